@@ -1,0 +1,42 @@
+#pragma once
+// The error hierarchy (shared/STYLE.md §2.12). Messages are one line: what failed, where,
+// and what to try.
+
+#include <stdexcept>
+#include <string>
+
+namespace penumbra {
+
+/// Scene or asset problems; carries the file, line (0 if unknown) and key.
+class InputError : public std::runtime_error {
+public:
+    InputError(const std::string& file, const std::string& key, const std::string& what,
+               int line = 0);
+    const std::string& file() const { return file_; }
+    const std::string& key() const { return key_; }
+    int line() const { return line_; }
+
+private:
+    std::string file_, key_;
+    int line_;
+};
+
+/// Bad options or combinations of options.
+class ConfigError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Failures reported by a third-party library or the operating system.
+class ExternalError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Broken invariants: bugs.
+class InternalError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+} // namespace penumbra

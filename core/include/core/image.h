@@ -1,0 +1,35 @@
+#pragma once
+// RGB float images and their files: linear OpenEXR and tone-mapped sRGB PNG.
+
+#include <string>
+#include <vector>
+
+#include "core/rgb.h"
+
+namespace penumbra {
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<Rgb> pixels; ///< row-major, top row first
+
+    Image() = default;
+    Image(int w, int h) : width(w), height(h), pixels(std::size_t(w) * std::size_t(h)) {}
+    Rgb& at(int x, int y) { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+    const Rgb& at(int x, int y) const {
+        return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    }
+};
+
+/// \brief Writes linear float RGB OpenEXR atomically (temp name, then rename).
+void write_exr(const std::string& path, const Image& image);
+/// \brief Reads an RGB OpenEXR file.
+Image read_exr(const std::string& path);
+
+/// \brief Automatic exposure: maps the log-average luminance to middle grey 0.18 (Reinhard
+///        et al. 2002's key value). Returns 1 for a black image.
+double auto_exposure(const Image& image);
+
+/// \brief Writes 8-bit sRGB PNG of image × exposure (clamped), atomically.
+void write_png(const std::string& path, const Image& image, double exposure);
+
+} // namespace penumbra

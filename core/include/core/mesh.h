@@ -1,0 +1,65 @@
+#pragma once
+// The radiosity mesh and its solution as plain arrays (SoA), the data that flows from the
+// mesher to the solver, the ray tracer and the viewer.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/rgb.h"
+#include "core/vec.h"
+
+namespace penumbra {
+
+/// \brief One side of one planar surface. Two-sided surfaces give two patches with their own
+///        vertices, so values are never interpolated across a side, a crease or a contact.
+struct Patch {
+    std::uint32_t polygon = 0;  ///< index of the input polygon in Scene::polygons
+    std::uint32_t surface = 0;  ///< planar surface id (a non-planar polygon gives several)
+    std::uint32_t material = 0; ///< index into Scene::materials
+    bool back = false;          ///< the back side of a two-sided surface
+    Vec3 normal;                ///< unit normal of this side
+    Rgb reflectance;            ///< copied from the material
+    Rgb emission;               ///< emitted radiosity πL of this side, W/m²
+};
+
+/// \brief Conforming triangle mesh of all patches. An element is one triangle of one patch,
+///        wound counter-clockwise when seen from the side it belongs to.
+struct RadiosityMesh {
+    std::vector<Vec3f> positions;                        ///< per vertex, metres
+    std::vector<std::uint32_t> vertex_patch;             ///< per vertex
+    std::vector<std::array<std::uint32_t, 3>> triangles; ///< per element
+    std::vector<std::uint32_t> element_patch;            ///< per element
+    std::vector<std::int32_t> element_twin;              ///< the other side's element or -1
+    std::vector<double> element_area;                    ///< per element, m²
+    std::vector<Patch> patches;
+    /// Elements that carry geometry for ray tracing (front or one-sided), in primitive order.
+    std::vector<std::uint32_t> geometry_elements;
+    double scene_diagonal = 0; ///< metres
+
+    std::size_t element_count() const { return triangles.size(); }
+    std::size_t vertex_count() const { return positions.size(); }
+    Vec3 vertex(std::uint32_t v) const { return Vec3(positions[v]); }
+    Vec3 centroid(std::uint32_t e) const;
+    const Patch& patch_of(std::uint32_t e) const { return patches[element_patch[e]]; }
+};
+
+/// \brief Per-element (cell) and per-vertex (point) results of a solve, W/m² per channel.
+struct Solution {
+    std::vector<Rgb> radiosity;           ///< per element B = E + ρ H
+    std::vector<Rgb> irradiance_direct;   ///< per element, area mean from sources
+    std::vector<Rgb> irradiance_indirect; ///< per element, area mean from reflected light
+    std::vector<Rgb> vertex_radiosity;
+    std::vector<Rgb> vertex_irradiance_direct;
+    std::vector<Rgb> vertex_irradiance_indirect;
+};
+
+/// \brief Linear interpolation of per-vertex \p values at \p point on the patch side whose
+///        normal agrees with \p normal (within 1e-3) and whose plane passes within \p tolerance
+///        metres. Returns nothing if no element contains the point.
+std::optional<Rgb> interpolate_at(const RadiosityMesh& mesh, const std::vector<Rgb>& values,
+                                  const Vec3& point, const Vec3& normal, double tolerance);
+
+} // namespace penumbra

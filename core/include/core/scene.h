@@ -1,0 +1,88 @@
+#pragma once
+// The scene description: polygons with materials, point lights, sensors, camera and the
+// settings of each stage. Everything is in metres and radiometric RGB after loading; the
+// scene file's units and photometric quantities are converted by the loader.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/rgb.h"
+#include "core/vec.h"
+
+namespace penumbra {
+
+/// \brief A diffuse material. Emission is the emitted radiance of the front side (and of the
+///        back side too when emission_two_sided).
+struct Material {
+    std::string name;
+    Rgb reflectance{0.5f};      ///< diffuse reflectance ρ, each channel in [0, 1)
+    Rgb emission{};             ///< emitted radiance, W/(sr·m²)
+    bool two_sided = true;      ///< front and back are separate receiving elements
+    bool emission_two_sided = false;
+    /// If set, the loader scales emission so that all polygons of this material together emit
+    /// this luminous flux (lm); emission then holds the colour until scaling.
+    std::optional<double> emission_flux_lm;
+};
+
+/// \brief A planar (or nearly planar) input polygon, counter-clockwise seen from its front.
+struct Polygon {
+    std::vector<Vec3> vertices; ///< metres
+    std::uint32_t material = 0; ///< index into Scene::materials
+    std::string name;           ///< object name from the file, for messages and output
+    std::string source;         ///< "file:face-index" for messages
+};
+
+/// \brief Isotropic point light.
+struct PointLight {
+    std::string name;
+    Vec3 position;            ///< metres
+    Rgb intensity;            ///< radiant intensity, W/sr per channel
+};
+
+/// \brief A sensor: a point and the normal of the receiving plane.
+struct Sensor {
+    std::string name;
+    Vec3 position; ///< metres
+    Vec3 normal;   ///< unit
+};
+
+struct Camera {
+    Vec3 eye{0, 0, 0}, look_at{0, 0, -1}, up{0, 1, 0}; ///< metres
+    double fov_deg = 45.0;
+    bool fov_axis_x = true; ///< the field of view spans the image width (else height)
+    int width = 512, height = 512;
+    int samples_per_pixel = 16; ///< stratified, rounded up to a square number
+    double exposure = 0.0;      ///< 0 = automatic; else multiplier on radiance before sRGB
+};
+
+struct MesherSettings {
+    double max_edge_length = 0.0; ///< metres; 0 = scene diagonal / 20
+    double planarity_tolerance = 1e-4; ///< relative to the polygon's size
+};
+
+struct SolverSettings {
+    double residual = 1e-3;       ///< stop when unshot power / emitted power falls below this
+    bool ambient = false;         ///< add the ambient term (previews only)
+    std::int64_t max_shots = 0;   ///< 0 = 50 × element count
+    int visibility_rays = 16;     ///< rays per element pair that is not trivially visible
+    double row_cache_mb = 2048;   ///< memory for cached form-factor rows
+};
+
+struct Scene {
+    std::string name;
+    std::string file; ///< the scene file, for messages
+    std::vector<Material> materials;
+    std::vector<Polygon> polygons;
+    std::vector<PointLight> point_lights;
+    std::vector<Sensor> sensors;
+    std::optional<Camera> camera;
+    MesherSettings mesher;
+    SolverSettings solver;
+
+    BBox bounds() const;
+    bool has_emitter() const;
+};
+
+} // namespace penumbra

@@ -1,0 +1,40 @@
+#pragma once
+// The visibility interface the solver uses. raytrace implements it with Embree; tests may
+// implement it with an analytic oracle.
+
+#include <cstdint>
+#include <span>
+
+#include "core/vec.h"
+
+namespace penumbra {
+
+/// A ray segment: points origin + t·direction for t in (tnear, tfar).
+struct Segment {
+    Vec3f origin;
+    Vec3f direction;
+    float tnear = 0;
+    float tfar = 0;
+};
+
+/// \brief Batched occlusion queries. Implementations are thread-safe and deterministic.
+class VisibilityQuery {
+public:
+    virtual ~VisibilityQuery() = default;
+    /// Sets out[i] = 1 if anything blocks segments[i], else 0. Sizes must match.
+    virtual void occluded(std::span<const Segment> segments, std::span<std::uint8_t> out) const = 0;
+    /// Total rays traced so far.
+    virtual std::uint64_t rays_traced() const = 0;
+};
+
+/// \brief A query that reports nothing blocked: for convex scenes and tests.
+class NoOcclusion final : public VisibilityQuery {
+public:
+    void occluded(std::span<const Segment>, std::span<std::uint8_t> out) const override {
+        for (auto& o : out)
+            o = 0;
+    }
+    std::uint64_t rays_traced() const override { return 0; }
+};
+
+} // namespace penumbra

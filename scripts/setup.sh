@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Penumbra set-up for a fresh Debian 12 machine: installs every dependency from Debian's
+# packages, then configures and builds Release into build/.
+#
+#   scripts/setup.sh            install + build
+#   scripts/setup.sh --deps     install only
+#   scripts/setup.sh --build    build only (dependencies already installed)
+#
+# Environment: BUILD_DIR (default build), BUILD_TYPE (default Release), JOBS (default nproc).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+PACKAGES=(
+    g++ cmake make pkg-config git ca-certificates
+    libcgal-dev libgmp-dev libmpfr-dev
+    libopenmesh-dev
+    libembree-dev
+    libvtk9-dev
+    libopenexr-dev
+    libtbb-dev
+    libeigen3-dev
+    libassimp-dev
+    nlohmann-json3-dev
+    libcli11-dev
+    libspdlog-dev libfmt-dev
+    libpng-dev
+    libgtest-dev libgmock-dev
+    libbenchmark-dev
+    xvfb xauth
+)
+
+need_install() {
+    local p
+    for p in "${PACKAGES[@]}"; do
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || return 0
+    done
+    return 1
+}
+
+install_deps() {
+    if ! need_install; then
+        echo "setup: all Debian packages already installed"
+        return
+    fi
+    local sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    echo "setup: installing ${#PACKAGES[@]} Debian packages (about 2 minutes on a bare machine)"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
+        "${PACKAGES[@]}" >/dev/null
+}
+
+build() {
+    local dir="${BUILD_DIR:-build}"
+    local jobs="${JOBS:-$(nproc)}"
+    cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}"
+    cmake --build "$dir" -j "$jobs"
+}
+
+case "${1:-all}" in
+    --deps) install_deps ;;
+    --build) build ;;
+    all) install_deps; build ;;
+    *) echo "usage: scripts/setup.sh [--deps|--build]" >&2; exit 2 ;;
+esac

@@ -1,0 +1,57 @@
+#pragma once
+// Solver v1: progressive refinement radiosity by shooting (Cohen et al. 1988, Southwell
+// iteration) with analytic polygon form factors times ray-traced visibility.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/context.h"
+#include "core/mesh.h"
+#include "core/scene.h"
+#include "core/visibility.h"
+
+namespace penumbra::solver {
+
+/// \brief Power bookkeeping of a solve, W per channel. emitted = absorbed + escaped + residual
+///        up to discretisation error (reported as imbalance).
+struct PowerBalance {
+    RgbD emitted;  ///< by emissive elements and point lights
+    RgbD absorbed; ///< Σ (1 − ρ) H A over elements
+    RgbD escaped;  ///< leaving the scene through openings (estimated by its own rays)
+    RgbD residual; ///< unshot power left when the solve stopped
+    /// (emitted − absorbed − escaped − residual) / emitted, luminance-weighted.
+    double relative_imbalance() const;
+};
+
+struct SolveStats {
+    std::int64_t shots = 0;
+    std::uint64_t rays = 0;
+    double seconds_form_factors = 0;
+    double seconds_total = 0;
+    PowerBalance power;
+    std::vector<double> residual_history; ///< relative unshot power after each 1 % of shots
+};
+
+/// \brief Solves the radiosity of \p mesh by progressive shooting until the unshot power falls
+///        below SolverSettings::residual of the emitted power.
+///        Deterministic: the result does not depend on ctx.threads.
+Solution solve_shooting(const Scene& scene, const RadiosityMesh& mesh,
+                        const VisibilityQuery& visibility, const Context& ctx,
+                        SolveStats* stats = nullptr);
+
+struct SensorReading {
+    Rgb irradiance_direct;   ///< W/m²
+    Rgb irradiance_total;    ///< W/m²
+    double illuminance_direct_lx = 0;
+    double illuminance_total_lx = 0;
+};
+
+/// \brief Irradiance at each sensor, gathered at the point itself from the sources (direct)
+///        and from every element's radiosity (indirect), with analytic form factors and
+///        visibility rays.
+std::vector<SensorReading> evaluate_sensors(const Scene& scene, const RadiosityMesh& mesh,
+                                            const Solution& solution,
+                                            const VisibilityQuery& visibility,
+                                            const Context& ctx);
+
+} // namespace penumbra::solver

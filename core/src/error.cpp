@@ -1,16 +1,17 @@
 #include "core/error.h"
 
+#include <fmt/format.h>
+
 namespace penumbra {
 
 namespace {
+// "file:line: 'key': what", leaving out the parts that are unknown.
 std::string format_input_error(const std::string& file, const std::string& key,
                                const std::string& what, int line) {
-    std::string where = file;
-    if (line > 0)
-        where += ":" + std::to_string(line);
+    std::string where = line > 0 ? fmt::format("{}:{}", file, line) : file;
     if (!key.empty())
-        where += (where.empty() ? "" : ": ") + std::string("'") + key + "'";
-    return where.empty() ? what : where + ": " + what;
+        where = where.empty() ? fmt::format("'{}'", key) : fmt::format("{}: '{}'", where, key);
+    return where.empty() ? what : fmt::format("{}: {}", where, what);
 }
 } // namespace
 

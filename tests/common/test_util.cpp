@@ -42,4 +42,36 @@ Context quiet_context(int threads) {
     return ctx;
 }
 
+std::uint32_t add_material(Scene& scene, const std::string& name, Rgb reflectance, Rgb emission,
+                           bool two_sided) {
+    Material m;
+    m.name = name;
+    m.reflectance = reflectance;
+    m.emission = emission;
+    m.two_sided = two_sided;
+    scene.materials.push_back(m);
+    return std::uint32_t(scene.materials.size() - 1);
+}
+
+void add_rect(Scene& scene, const std::string& name, std::uint32_t material, const Vec3& origin,
+              const Vec3& u, const Vec3& v) {
+    Polygon p;
+    p.name = name;
+    p.source = "test:" + name;
+    p.material = material;
+    p.vertices = {origin, origin + u, origin + u + v, origin + v};
+    scene.polygons.push_back(p);
+}
+
+void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t material) {
+    const Vec3 d = hi - lo;
+    const Vec3 ex(d.x, 0, 0), ey(0, d.y, 0), ez(0, 0, d.z);
+    add_rect(scene, "floor", material, lo, ex, ey);        // faces +z
+    add_rect(scene, "ceiling", material, lo + ez, ey, ex); // faces -z
+    add_rect(scene, "wall_y0", material, lo, ez, ex);      // faces +y
+    add_rect(scene, "wall_y1", material, lo + ey, ex, ez); // faces -y
+    add_rect(scene, "wall_x0", material, lo, ey, ez);      // faces +x
+    add_rect(scene, "wall_x1", material, lo + ex, ez, ey); // faces -x
+}
+
 } // namespace penumbra::test

@@ -17,3 +17,21 @@ std::string temp_dir(const std::string& tag);
 Context quiet_context(int threads = 0);
 
 } // namespace penumbra::test
+
+#include "core/scene.h"
+
+namespace penumbra::test {
+
+/// Adds a material; returns its index.
+std::uint32_t add_material(Scene& scene, const std::string& name, Rgb reflectance,
+                           Rgb emission = {}, bool two_sided = true);
+
+/// Adds the parallelogram origin, origin + u, origin + u + v, origin + v; its front faces
+/// along u × v.
+void add_rect(Scene& scene, const std::string& name, std::uint32_t material, const Vec3& origin,
+              const Vec3& u, const Vec3& v);
+
+/// Adds an axis-aligned box room [lo, hi] whose six walls face inwards.
+void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t material);
+
+} // namespace penumbra::test

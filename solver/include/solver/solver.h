@@ -29,7 +29,7 @@ struct SolveStats {
     double seconds_form_factors = 0;
     double seconds_total = 0;
     PowerBalance power;
-    std::vector<double> residual_history; ///< relative unshot power after each 1 % of shots
+    std::vector<double> residual_history; ///< relative unshot power after every N shots (N = elements)
 };
 
 /// \brief Solves the radiosity of \p mesh by progressive shooting until the unshot power falls

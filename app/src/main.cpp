@@ -1,0 +1,150 @@
+// penumbra: the command-line interface. Parses flags, builds the context, runs the pipeline
+// and maps errors to exit codes; nothing else lives here.
+
+#include <cstdio>
+#include <exception>
+#include <new>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/pipeline.h"
+#include "core/error.h"
+#include "core/files.h"
+#include "core/scene_io.h"
+#include "terminal.h"
+
+namespace {
+
+using namespace penumbra;
+
+enum ExitCode : int {
+    k_ok = 0,
+    k_unexpected = 1,
+    k_input = 2,
+    k_config = 3,
+    k_external = 4,
+    k_internal = 5,
+    k_out_of_memory = 6,
+    k_cancelled = 130,
+};
+
+struct CommonFlags {
+    int threads = 0;
+    std::uint64_t seed = 0;
+    bool quiet = false;
+    int verbose = 0;
+};
+
+struct BakeFlags {
+    std::string scene;
+    std::string output = "out";
+    double max_edge_m = 0;
+    double residual = 0;
+    bool no_render = false;
+};
+
+Context make_context(const CommonFlags& flags) {
+    Context ctx;
+    ctx.log = app::make_stderr_log_sink();
+    ctx.progress = flags.quiet ? nullptr : app::make_terminal_progress();
+    ctx.threads = flags.threads;
+    ctx.seed = flags.seed;
+    ctx.min_level = flags.quiet ? LogLevel::warn
+                                : (flags.verbose > 0 ? LogLevel::debug : LogLevel::info);
+    return ctx;
+}
+
+void add_common_flags(CLI::App& cmd, CommonFlags& flags) {
+    cmd.add_option("--threads", flags.threads, "worker threads (0 = all cores)")
+        ->check(CLI::Range(0, 1024));
+    cmd.add_option("--seed", flags.seed, "master seed of all random streams");
+    cmd.add_flag("-q,--quiet", flags.quiet, "only warnings and errors, no progress bars");
+    cmd.add_flag("-v,--verbose", flags.verbose, "debug messages");
+}
+
+int run_bake(const BakeFlags& flags, const CommonFlags& common) {
+    Context ctx = make_context(common);
+    Scene scene = load_scene(flags.scene);
+    if (flags.max_edge_m > 0)
+        scene.mesher.max_edge_length = flags.max_edge_m;
+    if (flags.residual > 0)
+        scene.solver.residual = flags.residual;
+    check_output_dir(flags.output);
+    app::BakeOptions options;
+    options.render = !flags.no_render;
+    app::BakeResult result = app::bake(scene, options, ctx);
+    app::write_outputs(flags.output, scene, result);
+    const auto& pb = result.stats.power;
+    ctx.info("wrote {}: {} elements, {} rays, emitted {:.4g} lm, absorbed {:.4g} lm, escaped "
+             "{:.4g} lm, unshot {:.4g} lm",
+             flags.output, result.mesh.element_count(), result.rays, to_photometric(pb.emitted),
+             to_photometric(pb.absorbed), to_photometric(pb.escaped),
+             to_photometric(pb.residual));
+    return k_ok;
+}
+
+int run_validate(const std::string& path, const CommonFlags& common) {
+    Context ctx = make_context(common);
+    Scene scene = load_scene(path);
+    ctx.info("{}: {} polygons, {} materials, {} point lights, {} sensors{}", path,
+             scene.polygons.size(), scene.materials.size(), scene.point_lights.size(),
+             scene.sensors.size(), scene.camera ? ", camera" : "");
+    return k_ok;
+}
+
+int report(const char* kind, const std::string& message, int code) {
+    std::fprintf(stderr, "penumbra: %s%s\n", kind, message.c_str());
+    return code;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App cli{"Penumbra: radiosity-first lighting (mesh, solve, render, sensors)"};
+    cli.require_subcommand(1);
+    CommonFlags common;
+    BakeFlags bake;
+    auto* bake_cmd = cli.add_subcommand("bake", "mesh, solve and write every output of a scene");
+    bake_cmd->add_option("scene", bake.scene, "scene file (JSON, docs/scene-format.md)")
+        ->required();
+    bake_cmd->add_option("-o,--output", bake.output, "output folder (created if missing)");
+    bake_cmd->add_option("--max-edge", bake.max_edge_m,
+                         "maximum element edge length in metres (overrides the scene)")
+        ->check(CLI::PositiveNumber);
+    bake_cmd->add_option("--residual", bake.residual,
+                         "stop when unshot power / emitted power falls below this")
+        ->check(CLI::Range(1e-12, 0.999999));
+    bake_cmd->add_flag("--no-render", bake.no_render, "skip the camera render");
+    add_common_flags(*bake_cmd, common);
+    std::string validate_scene_path;
+    auto* validate_cmd = cli.add_subcommand("validate", "load and check a scene, write nothing");
+    validate_cmd->add_option("scene", validate_scene_path, "scene file")->required();
+    add_common_flags(*validate_cmd, common);
+    try {
+        cli.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return cli.exit(e) == 0 ? k_ok : k_config;
+    }
+    try {
+        if (*bake_cmd)
+            return run_bake(bake, common);
+        return run_validate(validate_scene_path, common);
+    } catch (const InputError& e) {
+        return report("error: ", e.what(), k_input);
+    } catch (const ConfigError& e) {
+        return report("error: ", e.what(), k_config);
+    } catch (const ExternalError& e) {
+        return report("error: ", e.what(), k_external);
+    } catch (const InternalError& e) {
+        return report("internal error (please report): ", e.what(), k_internal);
+    } catch (const Cancelled&) {
+        return report("", "cancelled", k_cancelled);
+    } catch (const std::bad_alloc&) {
+        return report("error: ", "out of memory; try a larger --max-edge", k_out_of_memory);
+    } catch (const std::exception& e) {
+        return report("error: ", e.what(), k_unexpected);
+    } catch (...) {
+        return report("error: ", "unknown exception", k_unexpected);
+    }
+}

@@ -1,0 +1,74 @@
+// Text outputs of a bake: summary.json and sensors.csv.
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "app/pipeline.h"
+
+namespace penumbra::app {
+
+namespace {
+
+nlohmann::json rgb_json(const RgbD& c) {
+    return {{"rgb_w", {c.r, c.g, c.b}}, {"lm", to_photometric(c)}};
+}
+
+nlohmann::json balance_json(const solver::PowerBalance& pb) {
+    nlohmann::json j;
+    j["emitted"] = rgb_json(pb.emitted);
+    j["absorbed"] = rgb_json(pb.absorbed);
+    j["escaped"] = rgb_json(pb.escaped);
+    j["residual_unshot"] = rgb_json(pb.residual);
+    j["relative_imbalance"] = pb.relative_imbalance();
+    j["note"] = "emitted = absorbed + escaped + residual_unshot + imbalance; escaped is "
+                "estimated by its own rays, imbalance is discretisation and sampling error";
+    return j;
+}
+
+} // namespace
+
+std::string summary_json(const Scene& scene, const BakeResult& result) {
+    nlohmann::json j;
+    j["scene"] = scene.name;
+    j["scene_file"] = scene.file;
+    j["elements"] = result.mesh.element_count();
+    j["vertices"] = result.mesh.vertex_count();
+    j["patches"] = result.mesh.patches.size();
+    j["input_polygons"] = scene.polygons.size();
+    j["rays_traced"] = result.rays;
+    j["solver"] = {{"method", "shooting"},
+                   {"shots", result.stats.shots},
+                   {"residual_target", scene.solver.residual},
+                   {"residual_history", result.stats.residual_history}};
+    nlohmann::json times = nlohmann::json::object();
+    double total = 0;
+    for (const StageTime& t : result.times) {
+        times[t.stage] = t.seconds;
+        total += t.seconds;
+    }
+    times["total"] = total;
+    j["seconds"] = times;
+    j["power_balance"] = balance_json(result.stats.power);
+    return j.dump(2) + "\n";
+}
+
+std::string sensors_csv(const Scene& scene, const BakeResult& result) {
+    std::string out = "name,x,y,z,nx,ny,nz,direct_r_w_m2,direct_g_w_m2,direct_b_w_m2,"
+                      "total_r_w_m2,total_g_w_m2,total_b_w_m2,direct_lx,total_lx\n";
+    for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
+        const Sensor& s = scene.sensors[i];
+        const solver::SensorReading& r = result.sensors[i];
+        out += fmt::format("{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
+                           "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                           s.name.empty() ? fmt::format("s{}", i) : s.name, s.position.x,
+                           s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z,
+                           r.irradiance_direct.r, r.irradiance_direct.g, r.irradiance_direct.b,
+                           r.irradiance_total.r, r.irradiance_total.g, r.irradiance_total.b,
+                           r.illuminance_direct_lx, r.illuminance_total_lx);
+    }
+    return out;
+}
+
+} // namespace penumbra::app

@@ -1,0 +1,98 @@
+#include "terminal.h"
+
+#include <chrono>
+#include <cstdio>
+#include <mutex>
+#include <string>
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+namespace penumbra::app {
+
+namespace {
+
+class SpdlogSink final : public LogSink {
+public:
+    SpdlogSink() : logger_(spdlog::stderr_color_mt("penumbra")) {
+        logger_->set_pattern("%^%l%$: %v");
+        logger_->set_level(spdlog::level::trace);
+    }
+    ~SpdlogSink() override { spdlog::drop("penumbra"); }
+    void write(LogLevel level, std::string_view message) override {
+        logger_->log(to_spdlog(level), "{}", message);
+    }
+
+private:
+    static spdlog::level::level_enum to_spdlog(LogLevel level) {
+        switch (level) {
+        case LogLevel::trace: return spdlog::level::trace;
+        case LogLevel::debug: return spdlog::level::debug;
+        case LogLevel::info: return spdlog::level::info;
+        case LogLevel::warn: return spdlog::level::warn;
+        case LogLevel::error: return spdlog::level::err;
+        }
+        return spdlog::level::info;
+    }
+    std::shared_ptr<spdlog::logger> logger_;
+};
+
+class TerminalProgress final : public ProgressSink {
+public:
+    void begin(std::string_view stage) override {
+        std::lock_guard lock(mutex_);
+        stage_ = stage;
+        start_ = clock::now();
+        last_draw_ = start_;
+        shown_ = false;
+    }
+    bool update(double fraction) override {
+        std::lock_guard lock(mutex_);
+        auto now = clock::now();
+        if (now - start_ < std::chrono::seconds(1) ||
+            now - last_draw_ < std::chrono::milliseconds(100))
+            return true;
+        draw(fraction, now);
+        return true;
+    }
+    void end() override {
+        std::lock_guard lock(mutex_);
+        if (shown_) {
+            draw(1.0, clock::now());
+            std::fputc('\n', stderr);
+        }
+        shown_ = false;
+    }
+
+private:
+    using clock = std::chrono::steady_clock;
+    void draw(double fraction, clock::time_point now) {
+        constexpr int width = 40;
+        int filled = int(fraction * width + 0.5);
+        double elapsed = std::chrono::duration<double>(now - start_).count();
+        std::fprintf(stderr, "\r%-14s [%s%s] %3d%% %6.1f s", stage_.c_str(),
+                     std::string(std::size_t(filled), '#').c_str(),
+                     std::string(std::size_t(width - filled), '.').c_str(),
+                     int(fraction * 100 + 0.5), elapsed);
+        std::fflush(stderr);
+        last_draw_ = now;
+        shown_ = true;
+    }
+    std::mutex mutex_;
+    std::string stage_;
+    clock::time_point start_, last_draw_;
+    bool shown_ = false;
+};
+
+} // namespace
+
+std::shared_ptr<LogSink> make_stderr_log_sink() { return std::make_shared<SpdlogSink>(); }
+
+std::shared_ptr<ProgressSink> make_terminal_progress() {
+    if (!::isatty(STDERR_FILENO))
+        return nullptr;
+    return std::make_shared<TerminalProgress>();
+}
+
+} // namespace penumbra::app

@@ -1,0 +1,91 @@
+// Analytic form factors. Point-to-polygon: F = (1/2π) Σ_i γ_i n·Γ_i over the polygon's edges,
+// with γ_i the angle the edge subtends at x and Γ_i the unit normal of the plane through x and
+// the edge (Lambert 1760; Baum, Rushmeier & Winget 1989). Terms whose edge passes through x
+// (γ undefined) contribute nothing: such an edge lies in a plane through x and adds no
+// projected solid angle.
+
+#include "form_factor.h"
+
+#include <cmath>
+
+namespace penumbra::solver {
+
+namespace {
+
+// Sutherland–Hodgman against the plane dot(p − x, n) ≥ 0. \p out holds up to count + 1 points.
+std::size_t clip_to_hemisphere(const Vec3& x, const Vec3& n, const Vec3* poly, std::size_t count,
+                               Vec3* out) {
+    std::size_t m = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        const Vec3& a = poly[i];
+        const Vec3& b = poly[(i + 1) % count];
+        double da = dot(a - x, n), db = dot(b - x, n);
+        if (da >= 0)
+            out[m++] = a;
+        if ((da >= 0) != (db >= 0)) {
+            double t = da / (da - db);
+            out[m++] = a + (b - a) * t;
+        }
+    }
+    return m;
+}
+
+} // namespace
+
+double form_factor_point_polygon(const Vec3& x, const Vec3& n, const Vec3* poly,
+                                 std::size_t count) {
+    constexpr std::size_t k_max = 16;
+    Vec3 clipped[k_max + 1];
+    if (count > k_max)
+        count = k_max;
+    std::size_t m = clip_to_hemisphere(x, n, poly, count, clipped);
+    if (m < 3)
+        return 0.0;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < m; ++i) {
+        Vec3 r0 = clipped[i] - x, r1 = clipped[(i + 1) % m] - x;
+        Vec3 c = cross(r0, r1);
+        double c_len = length(c);
+        if (c_len <= 1e-300)
+            continue;
+        double gamma = std::atan2(c_len, dot(r0, r1));
+        sum += gamma * dot(n, c) / c_len;
+    }
+    return std::abs(sum) / (2.0 * k_pi);
+}
+
+double solid_angle_triangle(const Vec3& p, const std::array<Vec3, 3>& tri) {
+    Vec3 a = tri[0] - p, b = tri[1] - p, c = tri[2] - p;
+    double la = length(a), lb = length(b), lc = length(c);
+    double numerator = std::abs(dot(a, cross(b, c)));
+    double denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+    return 2.0 * std::atan2(numerator, denominator);
+}
+
+void quadrature_barycentrics(int level, std::array<double, 2>* out, std::size_t* count) {
+    // Sub-triangles of a k × k subdivision (k = 2^level) in barycentric grid coordinates.
+    const int k = 1 << level;
+    std::size_t m = 0;
+    for (int j = 0; j < k; ++j) {
+        for (int i = 0; i < k - j; ++i) {
+            // Upward sub-triangle (i, j), (i+1, j), (i, j+1): centroid (i + 1/3, j + 1/3).
+            out[m++] = {(i + 1.0 / 3.0) / k, (j + 1.0 / 3.0) / k};
+            if (i + 1 < k - j) // downward (i+1, j), (i+1, j+1), (i, j+1)
+                out[m++] = {(i + 2.0 / 3.0) / k, (j + 2.0 / 3.0) / k};
+        }
+    }
+    *count = m;
+}
+
+Vec3 sample_cosine_hemisphere(const Vec3& n, double u1, double u2) {
+    double r = std::sqrt(u1), phi = 2.0 * k_pi * u2;
+    Frame f = Frame::from_normal(n);
+    return f.to_world(Vec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u1))));
+}
+
+Vec3 sample_sphere(double u1, double u2) {
+    double z = 1.0 - 2.0 * u1, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * k_pi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+} // namespace penumbra::solver

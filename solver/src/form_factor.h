@@ -1,0 +1,46 @@
+#pragma once
+// Analytic form-factor kernels: point-to-polygon (Lambert's contour integral; Baum, Rushmeier
+// & Winget 1989) with clipping to the receiver's hemisphere, and the solid angle of a
+// triangle (Van Oosterom & Strackee 1983).
+
+#include <array>
+#include <cstddef>
+
+#include "core/rng.h"
+#include "core/vec.h"
+
+namespace penumbra::solver {
+
+/// \brief Form factor from a differential area at \p x with unit normal \p n to the planar
+///        polygon \p poly (any winding). The part of the polygon below x's tangent plane is
+///        clipped away. The caller checks that the polygon's emitting side faces x.
+double form_factor_point_polygon(const Vec3& x, const Vec3& n, const Vec3* poly,
+                                 std::size_t count);
+
+inline double form_factor_point_triangle(const Vec3& x, const Vec3& n,
+                                         const std::array<Vec3, 3>& tri) {
+    return form_factor_point_polygon(x, n, tri.data(), 3);
+}
+
+/// \brief Solid angle (sr) subtended by triangle \p tri seen from \p p.
+double solid_angle_triangle(const Vec3& p, const std::array<Vec3, 3>& tri);
+
+/// \brief Points of the equal-weight rule of \p level: the centroids of the 4^level congruent
+///        sub-triangles. Exact for linear integrands; returns barycentrics (b1, b2).
+void quadrature_barycentrics(int level, std::array<double, 2>* out, std::size_t* count);
+inline constexpr std::size_t k_max_quadrature_points = 64; ///< level 3
+
+/// A uniformly distributed point on a triangle from two uniform numbers in [0, 1).
+inline Vec3 sample_triangle(const std::array<Vec3, 3>& t, double u1, double u2) {
+    double su = std::sqrt(u1);
+    double b0 = 1.0 - su, b1 = u2 * su;
+    return t[0] * b0 + t[1] * b1 + t[2] * (1.0 - b0 - b1);
+}
+
+/// A cosine-distributed direction around \p n (Malley's method).
+Vec3 sample_cosine_hemisphere(const Vec3& n, double u1, double u2);
+
+/// A uniformly distributed direction on the unit sphere.
+Vec3 sample_sphere(double u1, double u2);
+
+} // namespace penumbra::solver

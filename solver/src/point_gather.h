@@ -1,0 +1,41 @@
+#pragma once
+// Irradiance gathered at a point (vertices, sensors): analytic point-to-triangle form factors
+// from each source or reflecting element, times visibility from rays.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/rng.h"
+#include "core/scene.h"
+#include "core/visibility.h"
+#include "element_rows.h"
+
+namespace penumbra::solver {
+
+/// What a point can gather from: emitting elements and point lights (direct), reflecting
+/// elements (indirect).
+struct GatherSources {
+    std::vector<std::uint32_t> emitters; ///< elements with non-zero emission
+    std::vector<Rgb> emission;           ///< per element, πL (W/m²)
+    std::vector<PointLight> lights;
+};
+
+struct GatherPoint {
+    Vec3 position;
+    Vec3 normal;
+    std::uint64_t id = 0;   ///< names the random stream together with the purpose
+    RngPurpose purpose = RngPurpose::vertex_visibility;
+};
+
+/// \brief Direct irradiance (W/m²) at \p p from the sources.
+Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
+                  const VisibilityQuery& visibility, const GatherPoint& p, int rays_per_source,
+                  std::uint64_t seed);
+
+/// \brief Irradiance (W/m²) at \p p from every element's radiance \p exitance (W/m²),
+///        excluding nothing; pass reflected radiosity B − E for the indirect part.
+Rgb gather_elements(const ElementGeometry& geo, const std::vector<Rgb>& exitance,
+                    const VisibilityQuery& visibility, const GatherPoint& p, int rays_per_element,
+                    std::uint64_t seed);
+
+} // namespace penumbra::solver

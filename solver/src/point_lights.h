@@ -1,0 +1,20 @@
+#pragma once
+
+#include <vector>
+
+#include "core/context.h"
+#include "core/scene.h"
+#include "core/visibility.h"
+#include "element_rows.h"
+#include "shooting_state.h"
+
+namespace penumbra::solver {
+
+/// \brief Shoots every isotropic point light once: element j receives I·Ω_j·V_j / A_j, with
+///        Ω_j the exact solid angle of j (so that a closed scene catches all 4πI) and V_j the
+///        visible fraction from rays. The escaping fraction is estimated by its own rays.
+void shoot_point_lights(ShootingState& state, const ElementGeometry& geo,
+                        const std::vector<PointLight>& lights, const VisibilityQuery& visibility,
+                        const RowSettings& settings, const Context& ctx);
+
+} // namespace penumbra::solver

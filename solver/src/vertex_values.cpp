@@ -1,0 +1,70 @@
+#include "vertex_values.h"
+
+#include "core/parallel.h"
+
+namespace penumbra::solver {
+
+GatherSources direct_sources(const Scene& scene, const std::vector<Rgb>& element_emission) {
+    GatherSources sources;
+    sources.emission = element_emission;
+    for (std::size_t e = 0; e < element_emission.size(); ++e)
+        if (!element_emission[e].is_black())
+            sources.emitters.push_back(std::uint32_t(e));
+    sources.lights = scene.point_lights;
+    return sources;
+}
+
+namespace {
+
+std::vector<Rgb> area_weighted_vertex_mean(const RadiosityMesh& mesh,
+                                           const std::vector<Rgb>& element_values) {
+    std::vector<RgbD> sum(mesh.vertex_count());
+    std::vector<double> weight(mesh.vertex_count(), 0.0);
+    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+        for (std::uint32_t v : mesh.triangles[e]) {
+            sum[v] += RgbD(element_values[e]) * mesh.element_area[e];
+            weight[v] += mesh.element_area[e];
+        }
+    }
+    std::vector<Rgb> out(mesh.vertex_count());
+    for (std::size_t v = 0; v < out.size(); ++v)
+        if (weight[v] > 0)
+            out[v] = Rgb(float(sum[v].r / weight[v]), float(sum[v].g / weight[v]),
+                         float(sum[v].b / weight[v]));
+    return out;
+}
+
+} // namespace
+
+Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const ElementGeometry& geo,
+                       const ShootingState& state, const VisibilityQuery& visibility,
+                       const RowSettings& settings, const Context& ctx) {
+    Solution sol;
+    sol.radiosity = state.radiosity;
+    sol.irradiance_direct = state.h_direct;
+    sol.irradiance_indirect = state.h_indirect;
+    sol.vertex_irradiance_indirect = area_weighted_vertex_mean(mesh, state.h_indirect);
+    const GatherSources sources = direct_sources(scene, state.emission);
+    const std::size_t nv = mesh.vertex_count();
+    sol.vertex_irradiance_direct.resize(nv);
+    sol.vertex_radiosity.resize(nv);
+    ProgressStage progress(ctx, "vertex values");
+    const std::size_t block = 4096;
+    for (std::size_t begin = 0; begin < nv; begin += block) {
+        const std::size_t end = std::min(nv, begin + block);
+        parallel_for_index(end - begin, 16, [&](std::size_t k) {
+            const std::size_t v = begin + k;
+            const Patch& patch = mesh.patches[mesh.vertex_patch[v]];
+            GatherPoint p{mesh.vertex(std::uint32_t(v)), patch.normal, v,
+                          RngPurpose::vertex_visibility};
+            sol.vertex_irradiance_direct[v] =
+                gather_direct(geo, sources, visibility, p, settings.visibility_rays, ctx.seed);
+            Rgb h = sol.vertex_irradiance_direct[v] + sol.vertex_irradiance_indirect[v];
+            sol.vertex_radiosity[v] = patch.emission + patch.reflectance * h;
+        });
+        progress.update(double(end) / double(nv));
+    }
+    return sol;
+}
+
+} // namespace penumbra::solver

@@ -1,0 +1,23 @@
+#pragma once
+
+#include "core/context.h"
+#include "core/mesh.h"
+#include "core/scene.h"
+#include "core/visibility.h"
+#include "element_rows.h"
+#include "point_gather.h"
+#include "shooting_state.h"
+
+namespace penumbra::solver {
+
+/// The sources a point can gather direct light from: emitting elements and point lights.
+GatherSources direct_sources(const Scene& scene, const std::vector<Rgb>& element_emission);
+
+/// \brief Packs element results and reconstructs vertex values: direct irradiance gathered at
+///        each vertex itself (Wallace et al. 1989's vertex receivers), indirect as the
+///        area-weighted mean of the vertex's elements, B = E + ρ H.
+Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const ElementGeometry& geo,
+                       const ShootingState& state, const VisibilityQuery& visibility,
+                       const RowSettings& settings, const Context& ctx);
+
+} // namespace penumbra::solver

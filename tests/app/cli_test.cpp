@@ -1,0 +1,147 @@
+// The CLI as a user runs it: every kind of bad input gives one clear line naming the file or
+// key, a non-zero exit and no output left behind.
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+
+#include "common/test_util.h"
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int exit_code = -1;
+    std::string err;
+};
+
+RunResult run_cli(const std::string& args) {
+    std::string cmd = std::string(PENUMBRA_CLI) + " " + args + " 2>&1 1>/dev/null";
+    RunResult r;
+    FILE* pipe = ::popen(cmd.c_str(), "r");
+    if (!pipe)
+        return r;
+    std::array<char, 4096> buf{};
+    while (std::fgets(buf.data(), int(buf.size()), pipe))
+        r.err += buf.data();
+    int status = ::pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+void write(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+int count_lines(const std::string& s) {
+    int n = 0;
+    for (char c : s)
+        n += c == '\n';
+    return n;
+}
+
+// A valid minimal scene: a 1 m emitting square above a floor.
+std::string good_scene(const std::string& extra = "") {
+    return R"({
+  "materials": {"lamp": {"emission": [1, 1, 1], "reflectance": 0}, "floor": {"reflectance": 0.5}},
+  "polygons": [
+    {"name": "lamp", "material": "lamp", "vertices": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]]},
+    {"name": "floor", "material": "floor", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}
+  ],
+  "mesher": {"max_edge_length": 0.5})" + extra + "\n}\n";
+}
+
+class CliBadInput : public ::testing::Test {
+protected:
+    void SetUp() override { dir_ = test::temp_dir("cli"); }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    // Runs bake on \p scene_file, expects failure mentioning every word in \p mentions.
+    void expect_error(const std::string& scene_file, std::initializer_list<const char*> mentions) {
+        const fs::path out = dir_ / "out";
+        RunResult r = run_cli("bake " + scene_file + " -o " + out.string() + " -q");
+        EXPECT_NE(r.exit_code, 0) << r.err;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_EQ(r.err.rfind("penumbra: error: ", 0), 0u) << r.err;
+        for (const char* m : mentions)
+            EXPECT_NE(r.err.find(m), std::string::npos) << "missing '" << m << "' in: " << r.err;
+        EXPECT_FALSE(fs::exists(out)) << "output left behind";
+    }
+    fs::path dir_;
+};
+
+TEST_F(CliBadInput, MissingSceneFile) {
+    expect_error((dir_ / "nope.json").string(), {"nope.json", "not found"});
+}
+
+TEST_F(CliBadInput, MalformedJson) {
+    write(dir_ / "bad.json", "{\n  \"materials\": {,\n}\n");
+    expect_error((dir_ / "bad.json").string(), {"bad.json", ":2"});
+}
+
+TEST_F(CliBadInput, UnknownKey) {
+    write(dir_ / "typo.json", good_scene(",\n  \"solver\": {\"residul\": 0.01}"));
+    expect_error((dir_ / "typo.json").string(), {"typo.json", "solver.residul"});
+}
+
+TEST_F(CliBadInput, NanVertex) {
+    write(dir_ / "nan.obj", "o bad\nv nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    write(dir_ / "nan.json", good_scene(",\n  \"geometry\": \"nan.obj\""));
+    expect_error((dir_ / "nan.json").string(), {"nan.obj", "not finite"});
+}
+
+TEST_F(CliBadInput, ZeroAreaFace) {
+    write(dir_ / "flat.obj", "o sliver\nv 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    write(dir_ / "flat.json", good_scene(",\n  \"geometry\": \"flat.obj\""));
+    expect_error((dir_ / "flat.json").string(), {"flat.obj", "zero-area"});
+}
+
+TEST_F(CliBadInput, NoEmitter) {
+    write(dir_ / "dark.json", R"({"polygons": [{"name": "floor", "material": "floor",
+        "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}], "materials": {"floor": {}}})");
+    expect_error((dir_ / "dark.json").string(), {"dark.json", "no emitter"});
+}
+
+TEST_F(CliBadInput, UnwritableOutputFolder) {
+    write(dir_ / "ok.json", good_scene());
+    write(dir_ / "a_file", "x");
+    const fs::path out = dir_ / "a_file" / "out"; // a folder below a regular file
+    RunResult r = run_cli("bake " + (dir_ / "ok.json").string() + " -o " + out.string() + " -q");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(out.string()), std::string::npos) << r.err;
+}
+
+TEST_F(CliBadInput, BadFlag) {
+    write(dir_ / "ok.json", good_scene());
+    RunResult r = run_cli("bake " + (dir_ / "ok.json").string() + " --threads -3");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BakeWritesEveryOutput) {
+    const fs::path dir = test::temp_dir("cli-ok");
+    write(dir / "ok.json", good_scene(R"(,
+  "sensors": [[0.5, 0.5, 0, 0, 0, 1]],
+  "camera": {"eye": [0.5, -1.5, 0.6], "look_at": [0.5, 0.5, 0.3], "up": [0, 0, 1], "fov_deg": 50},
+  "image": {"width": 32, "height": 24, "spp": 4})"));
+    const fs::path out = dir / "out";
+    RunResult r = run_cli("bake " + (dir / "ok.json").string() + " -o " + out.string() + " -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* f : {"mesh.vtu", "render.exr", "render.png", "sensors.csv", "summary.json"})
+        EXPECT_TRUE(fs::exists(out / f)) << f;
+    for (const auto& entry : fs::directory_iterator(out))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+} // namespace
+} // namespace penumbra

@@ -26,7 +26,8 @@ struct ElementGeometry {
 };
 
 struct RowSettings {
-    int quadrature_level = 1; ///< 4^level points on the shooter
+    int quadrature_level = 1;      ///< 4^level points on the shooter for distant receivers
+    int near_quadrature_level = 3; ///< for receivers within about two element sizes
     int visibility_rays = 16; ///< per receiver, spread over the quadrature points
     int escape_rays = 64;     ///< cosine rays per shooter that estimate the escaping fraction
     std::uint64_t seed = 0;

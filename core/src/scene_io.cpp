@@ -1,0 +1,342 @@
+// Scene loading (format v1, docs/scene-format.md): the JSON file is parsed by scene_json.cpp,
+// its geometry files are imported by geometry_import.cpp, and this file merges them, reads
+// sensor files, and validates the result. validate_scene also turns `emission_flux_lm` into
+// radiance, since only then is the emitting area known.
+
+#include "core/scene_io.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/error.h"
+#include "core/files.h"
+
+#include "geometry_import.h"
+#include "scene_json.h"
+
+namespace penumbra {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string resolve(const std::string& base_dir, const std::string& file) {
+    return (fs::path(base_dir) / file).string(); // an absolute `file` replaces base_dir
+}
+
+std::optional<std::uint32_t> find_material(const Scene& scene, const std::string& name) {
+    for (std::size_t i = 0; i < scene.materials.size(); ++i)
+        if (scene.materials[i].name == name)
+            return std::uint32_t(i);
+    return std::nullopt;
+}
+
+std::uint32_t find_or_add_material(Scene& scene, const std::string& name) {
+    if (auto found = find_material(scene, name))
+        return *found;
+    Material material;
+    material.name = name;
+    scene.materials.push_back(std::move(material));
+    return std::uint32_t(scene.materials.size() - 1);
+}
+
+/// Materials are shared by name across geometry files; the first definition wins.
+void merge_geometry(Scene& scene, ImportedGeometry geometry) {
+    std::vector<std::uint32_t> remap;
+    for (Material& material : geometry.materials) {
+        auto found = find_material(scene, material.name);
+        if (!found) {
+            found = std::uint32_t(scene.materials.size());
+            scene.materials.push_back(std::move(material));
+        }
+        remap.push_back(*found);
+    }
+    for (Polygon& polygon : geometry.polygons) {
+        polygon.material = remap[polygon.material];
+        scene.polygons.push_back(std::move(polygon));
+    }
+}
+
+void add_geometry_file(Scene& scene, const std::string& base_dir, const std::string& file,
+                       double metres_per_unit) {
+    const std::string path = resolve(base_dir, file);
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError(path, "geometry",
+                         fmt::format("geometry file not found (listed in '{}')", scene.file));
+    merge_geometry(scene, import_geometry(path, file, metres_per_unit));
+}
+
+/// Overrides only the keys the scene file gives; a new name defines a new material.
+void apply_materials(Scene& scene, const std::vector<MaterialSpec>& specs) {
+    for (const MaterialSpec& spec : specs) {
+        Material& material = scene.materials[find_or_add_material(scene, spec.name)];
+        if (spec.reflectance)
+            material.reflectance = *spec.reflectance;
+        if (spec.emission) {
+            material.emission = *spec.emission;
+            material.emission_flux_lm.reset();
+        }
+        if (spec.emission_flux_lm) {
+            material.emission = spec.emission_color.value_or(Rgb(1.0f)); // scaled later
+            material.emission_flux_lm = spec.emission_flux_lm;
+        }
+        if (spec.two_sided)
+            material.two_sided = *spec.two_sided;
+        if (spec.emission_two_sided)
+            material.emission_two_sided = *spec.emission_two_sided;
+    }
+}
+
+void add_inline_polygons(Scene& scene, const std::vector<PolygonSpec>& specs) {
+    for (const PolygonSpec& spec : specs) {
+        const auto material = find_material(scene, spec.material);
+        if (!material) {
+            std::vector<std::string> names;
+            for (const Material& m : scene.materials)
+                names.push_back(m.name);
+            throw InputError(scene.file, spec.key + ".material",
+                             fmt::format("unknown material '{}' (known: {})", spec.material,
+                                         fmt::join(names, ", ")));
+        }
+        scene.polygons.push_back(Polygon{.vertices = spec.vertices,
+                                         .material = *material,
+                                         .name = spec.name,
+                                         .source = spec.key});
+    }
+}
+
+/// One Radiance-style sensor line "x y z nx ny nz"; false if it does not hold 6 numbers.
+bool parse_sensor_line(const std::string& line, double metres_per_unit, Sensor& sensor) {
+    std::istringstream tokens(line);
+    std::vector<double> v;
+    for (std::string token; tokens >> token;) {
+        char* end = nullptr;
+        v.push_back(std::strtod(token.c_str(), &end));
+        if (*end != '\0' || !std::isfinite(v.back()))
+            return false;
+    }
+    if (v.size() != 6)
+        return false;
+    sensor.position = Vec3(v[0], v[1], v[2]) * metres_per_unit;
+    sensor.normal = Vec3(v[3], v[4], v[5]);
+    return true;
+}
+
+std::vector<Sensor> read_sensor_file(const std::string& path, double metres_per_unit) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError(path, "sensors.file", "sensor file not found");
+    std::istringstream in(read_text_file(path));
+    std::vector<Sensor> sensors;
+    int number = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++number;
+        line = line.substr(0, line.find('#'));
+        if (line.find_first_not_of(" \t\r") == std::string::npos)
+            continue;
+        Sensor sensor;
+        if (!parse_sensor_line(line, metres_per_unit, sensor))
+            throw InputError(path, "",
+                             fmt::format("expected 6 numbers 'x y z nx ny nz', got '{}'", line),
+                             number);
+        if (length(sensor.normal) == 0)
+            throw InputError(path, "", "the sensor normal is zero", number);
+        sensor.normal = normalize(sensor.normal);
+        sensors.push_back(sensor);
+    }
+    return sensors;
+}
+
+// ---- Validation -----------------------------------------------------------------------------
+
+void check(bool ok, const Scene& scene, const std::string& key, const std::string& what) {
+    if (!ok)
+        throw InputError(scene.file, key, what);
+}
+
+std::string format_vec(const Vec3& v) {
+    return fmt::format("({}, {}, {})", v.x, v.y, v.z);
+}
+std::string format_rgb(const Rgb& c) {
+    return fmt::format("({}, {}, {})", c.r, c.g, c.b);
+}
+
+/// Newell's normal: its length is twice the polygon's area, also for non-planar polygons.
+Vec3 newell_normal(const std::vector<Vec3>& vertices) {
+    Vec3 normal;
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+        normal += cross(vertices[i], vertices[(i + 1) % vertices.size()]);
+    return normal;
+}
+
+double polygon_area_m2(const Polygon& polygon) {
+    return 0.5 * length(newell_normal(polygon.vertices));
+}
+
+[[noreturn]] void fail_polygon(const Scene& scene, const Polygon& polygon,
+                               const std::string& what) {
+    // Inline polygons have their key path as source; imported ones "file.obj:face N".
+    const bool inline_polygon = polygon.source.starts_with("polygons[");
+    const std::string key =
+        inline_polygon ? polygon.source : (polygon.source.empty() ? "" : "geometry");
+    const std::string where =
+        inline_polygon || polygon.source.empty() ? "" : fmt::format(" ({})", polygon.source);
+    throw InputError(scene.file, key, fmt::format("polygon '{}'{}: {}", polygon.name, where, what));
+}
+
+void validate_polygon(const Scene& scene, const Polygon& polygon) {
+    const std::size_t count = polygon.vertices.size();
+    if (count < 3)
+        fail_polygon(scene, polygon, fmt::format("has {} vertices, needs at least 3", count));
+    BBox box;
+    for (std::size_t i = 0; i < count; ++i) {
+        if (!is_finite(polygon.vertices[i]))
+            fail_polygon(
+                scene, polygon,
+                fmt::format("vertex {} is not finite {}", i + 1, format_vec(polygon.vertices[i])));
+        box.extend(polygon.vertices[i]);
+    }
+    if (polygon.material >= scene.materials.size())
+        fail_polygon(scene, polygon,
+                     fmt::format("material index {} is out of range ({} materials)",
+                                 polygon.material, scene.materials.size()));
+    const double size = box.diagonal();
+    if (!(length(newell_normal(polygon.vertices)) > 1e-12 * size * size))
+        fail_polygon(scene, polygon, "zero-area face (collinear or repeated vertices)");
+}
+
+void validate_material(const Scene& scene, const Material& m) {
+    const std::string key = "materials." + m.name;
+    bool reflectance_ok = true;
+    for (int c = 0; c < 3; ++c)
+        reflectance_ok = reflectance_ok && m.reflectance[c] >= 0 && m.reflectance[c] < 1;
+    check(reflectance_ok, scene, key + ".reflectance",
+          "must be in [0, 1) per channel, got " + format_rgb(m.reflectance));
+    check(m.emission.is_finite() && m.emission.r >= 0 && m.emission.g >= 0 && m.emission.b >= 0,
+          scene, key + (m.emission_flux_lm ? ".emission_color" : ".emission"),
+          "must be finite and >= 0, got " + format_rgb(m.emission));
+    if (m.emission_flux_lm)
+        check(std::isfinite(*m.emission_flux_lm) && *m.emission_flux_lm >= 0, scene,
+              key + ".emission_flux_lm", fmt::format("must be >= 0, got {}", *m.emission_flux_lm));
+}
+
+void validate_lights_and_sensors(Scene& scene) {
+    for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
+        const PointLight& light = scene.point_lights[i];
+        const std::string key = fmt::format("point_lights[{}]", i);
+        check(is_finite(light.position), scene, key + ".position", "is not finite");
+        const Rgb& c = light.intensity;
+        check(c.is_finite() && c.r >= 0 && c.g >= 0 && c.b >= 0, scene, key,
+              "intensity must be finite and >= 0, got " + format_rgb(c));
+    }
+    for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
+        Sensor& sensor = scene.sensors[i];
+        const std::string key = fmt::format("sensors[{}]", i);
+        check(is_finite(sensor.position), scene, key + ".position", "is not finite");
+        check(is_finite(sensor.normal) && length(sensor.normal) > 0, scene, key + ".normal",
+              "must be a finite, non-zero vector");
+        sensor.normal = normalize(sensor.normal);
+    }
+}
+
+void validate_camera(const Scene& scene, const Camera& camera) {
+    check(is_finite(camera.eye), scene, "camera.eye", "is not finite");
+    check(is_finite(camera.look_at) && length(camera.look_at - camera.eye) > 0, scene,
+          "camera.look_at", "must be finite and differ from 'eye'");
+    const Vec3 view = normalize(camera.look_at - camera.eye);
+    check(is_finite(camera.up) && length(cross(normalize(camera.up), view)) > 1e-6, scene,
+          "camera.up", "must be a non-zero vector not parallel to the view direction");
+    check(camera.fov_deg > 0 && camera.fov_deg < 180, scene, "camera.fov_deg",
+          fmt::format("must be in (0, 180), got {}", camera.fov_deg));
+    check(camera.width >= 1 && camera.width <= 16384, scene, "image.width",
+          fmt::format("must be in [1, 16384], got {}", camera.width));
+    check(camera.height >= 1 && camera.height <= 16384, scene, "image.height",
+          fmt::format("must be in [1, 16384], got {}", camera.height));
+    check(camera.samples_per_pixel >= 1, scene, "image.spp", "must be >= 1");
+    check(std::isfinite(camera.exposure) && camera.exposure >= 0, scene, "image.exposure",
+          fmt::format("must be >= 0 (0 = automatic), got {}", camera.exposure));
+}
+
+void validate_settings(const Scene& scene) {
+    const MesherSettings& mesher = scene.mesher;
+    check(std::isfinite(mesher.max_edge_length) && mesher.max_edge_length >= 0, scene,
+          "mesher.max_edge_length", "must be >= 0 (0 = automatic)");
+    check(std::isfinite(mesher.planarity_tolerance) && mesher.planarity_tolerance >= 0, scene,
+          "mesher.planarity_tolerance", "must be >= 0");
+    const SolverSettings& solver = scene.solver;
+    check(solver.residual > 0 && solver.residual < 1, scene, "solver.residual",
+          fmt::format("must be in (0, 1), got {}", solver.residual));
+    check(solver.max_shots >= 0, scene, "solver.max_shots", "must be >= 0 (0 = automatic)");
+    check(solver.visibility_rays >= 1, scene, "solver.visibility_rays", "must be >= 1");
+    check(std::isfinite(solver.row_cache_mb) && solver.row_cache_mb >= 0, scene,
+          "solver.row_cache_mb", "must be >= 0");
+}
+
+/// L = Φ / (π A) with A the area of every polygon of the material (twice if it emits from both
+/// sides); `emission` holds the colour until then. Idempotent: the colour is renormalised.
+void resolve_emission_flux(Scene& scene) {
+    std::vector<double> area_m2(scene.materials.size(), 0.0);
+    for (const Polygon& polygon : scene.polygons)
+        area_m2[polygon.material] += polygon_area_m2(polygon);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        Material& m = scene.materials[i];
+        if (!m.emission_flux_lm || *m.emission_flux_lm == 0) {
+            if (m.emission_flux_lm)
+                m.emission = Rgb{};
+            continue;
+        }
+        const double area = area_m2[i] * (m.emission_two_sided ? 2.0 : 1.0);
+        const std::string key = "materials." + m.name;
+        check(area > 0, scene, key + ".emission_flux_lm",
+              "no polygon has this material, so the flux has no area to leave from");
+        check(to_photometric(m.emission) > 0, scene, key + ".emission_color",
+              "has zero luminance, so it cannot carry a flux");
+        m.emission = from_photometric(*m.emission_flux_lm / (k_pi * area), m.emission);
+    }
+}
+
+} // namespace
+
+Scene load_scene(const std::string& path) {
+    const std::string text = read_text_file(path);
+    return parse_scene(text, path, fs::path(path).parent_path().string());
+}
+
+Scene parse_scene(const std::string& json_text, const std::string& file_name,
+                  const std::string& base_dir) {
+    SceneSpec spec = parse_scene_json(json_text, file_name);
+    Scene scene = std::move(spec.scene);
+    for (const std::string& file : spec.geometry)
+        add_geometry_file(scene, base_dir, file, spec.metres_per_unit);
+    apply_materials(scene, spec.materials);
+    add_inline_polygons(scene, spec.polygons);
+    if (spec.sensor_file) {
+        const auto sensors =
+            read_sensor_file(resolve(base_dir, *spec.sensor_file), spec.metres_per_unit);
+        scene.sensors.insert(scene.sensors.end(), sensors.begin(), sensors.end());
+    }
+    validate_scene(scene);
+    return scene;
+}
+
+void validate_scene(Scene& scene) {
+    for (const Polygon& polygon : scene.polygons)
+        validate_polygon(scene, polygon);
+    for (const Material& material : scene.materials)
+        validate_material(scene, material);
+    validate_lights_and_sensors(scene);
+    if (scene.camera)
+        validate_camera(scene, *scene.camera);
+    validate_settings(scene);
+    resolve_emission_flux(scene);
+    check(scene.has_emitter(), scene, "",
+          "scene has no emitter: give a material 'emission' or add 'point_lights'");
+}
+
+} // namespace penumbra

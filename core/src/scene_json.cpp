@@ -1,0 +1,436 @@
+// Scene file v1 parsing with nlohmann::json. One function reads each section; a Field carries
+// the dotted key path so that every message names its key, and every object checks its keys
+// against the known list (pbrt's ReportUnused, Mitsuba's unreferenced-property check).
+// Value ranges that also apply to scenes built in code are checked by validate_scene.
+
+#include "scene_json.h"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <set>
+#include <string_view>
+#include <utility>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+
+namespace penumbra {
+
+namespace {
+
+using Json = nlohmann::ordered_json; // keeps the file's order of materials
+
+/// A JSON value with its dotted key path ("materials.white.reflectance"), for messages.
+class Field {
+public:
+    Field(const Json& value, std::string path, const std::string& file)
+        : value_(value), path_(std::move(path)), file_(file) {}
+
+    const std::string& path() const { return path_; }
+    bool is_object() const { return value_.is_object(); }
+    bool is_array() const { return value_.is_array(); }
+    bool has(const std::string& key) const { return value_.contains(key); }
+
+    [[noreturn]] void fail(const std::string& what) const { throw InputError(file_, path_, what); }
+
+    Field child(const std::string& key) const {
+        return Field(value_.at(key), path_.empty() ? key : path_ + "." + key, file_);
+    }
+
+    Field required(const std::string& key) const {
+        if (!has(key))
+            Field(value_, path_.empty() ? key : path_ + "." + key, file_)
+                .fail("missing required key");
+        return child(key);
+    }
+
+    /// Checks that this is an object whose keys are all in \p known.
+    void expect_keys(std::initializer_list<std::string_view> known) const {
+        if (!value_.is_object())
+            fail(fmt::format("expected an object, got {}", value_.type_name()));
+        for (const auto& item : value_.items())
+            if (std::find(known.begin(), known.end(), item.key()) == known.end())
+                child(item.key())
+                    .fail(fmt::format("unknown key '{}' (known: {})", item.key(),
+                                      fmt::join(known, ", ")));
+    }
+
+    /// The members of an object whose keys are names (materials).
+    std::vector<std::pair<std::string, Field>> members() const {
+        if (!value_.is_object())
+            fail(fmt::format("expected an object, got {}", value_.type_name()));
+        std::vector<std::pair<std::string, Field>> result;
+        for (const auto& item : value_.items())
+            result.emplace_back(item.key(), child(item.key()));
+        return result;
+    }
+
+    std::size_t array_size() const {
+        if (!value_.is_array())
+            fail(fmt::format("expected an array, got {}", value_.type_name()));
+        return value_.size();
+    }
+
+    Field element(std::size_t i) const {
+        return Field(value_.at(i), fmt::format("{}[{}]", path_, i), file_);
+    }
+
+    double number() const {
+        if (!value_.is_number())
+            fail(fmt::format("expected a number, got {}", value_.type_name()));
+        const double value = value_.get<double>();
+        if (!std::isfinite(value))
+            fail(fmt::format("expected a finite number, got {}", value_.dump()));
+        return value;
+    }
+
+    std::int64_t integer(std::int64_t lo, std::int64_t hi) const {
+        const double value = number();
+        if (value != std::floor(value) || value < double(lo) || value > double(hi))
+            fail(fmt::format("expected an integer in [{}, {}], got {}", lo, hi, value_.dump()));
+        return std::int64_t(value);
+    }
+
+    bool boolean() const {
+        if (!value_.is_boolean())
+            fail(fmt::format("expected true or false, got {}", value_.type_name()));
+        return value_.get<bool>();
+    }
+
+    std::string string() const {
+        if (!value_.is_string())
+            fail(fmt::format("expected a string, got {}", value_.type_name()));
+        return value_.get<std::string>();
+    }
+
+    /// Exactly \p n finite numbers; \p alternative is appended to the message ("or a number").
+    std::vector<double> numbers(std::size_t n, std::string_view alternative = "") const {
+        const std::string expected = fmt::format("expected {} numbers{}", n, alternative);
+        if (!value_.is_array())
+            fail(fmt::format("{}, got {}", expected, value_.type_name()));
+        if (value_.size() != n)
+            fail(fmt::format("{}, got an array of {}", expected, value_.size()));
+        std::vector<double> result;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!value_[i].is_number())
+                fail(fmt::format("{}, element {} is {}", expected, i, value_[i].type_name()));
+            result.push_back(element(i).number());
+        }
+        return result;
+    }
+
+    Vec3 vec3() const {
+        const std::vector<double> v = numbers(3);
+        return {v[0], v[1], v[2]};
+    }
+
+    /// [r, g, b] or one number for grey.
+    Rgb rgb() const {
+        if (value_.is_number())
+            return Rgb(float(number()));
+        const std::vector<double> v = numbers(3, " (or one number)");
+        return {float(v[0]), float(v[1]), float(v[2])};
+    }
+
+private:
+    const Json& value_;
+    std::string path_;
+    const std::string& file_;
+};
+
+/// nlohmann keeps the last of repeated keys silently; a scene file must not rely on that.
+class DuplicateKeyCheck {
+public:
+    explicit DuplicateKeyCheck(const std::string& file) : file_(file) {}
+
+    bool operator()(int, Json::parse_event_t event, Json& parsed) {
+        if (event == Json::parse_event_t::object_start)
+            open_.emplace_back();
+        else if (event == Json::parse_event_t::object_end)
+            open_.pop_back();
+        else if (event == Json::parse_event_t::key &&
+                 !open_.back().insert(parsed.get<std::string>()).second)
+            throw InputError(file_, parsed.get<std::string>(), "key given twice in one object");
+        return true;
+    }
+
+private:
+    const std::string& file_;
+    std::vector<std::set<std::string>> open_;
+};
+
+Json parse_json(const std::string& text, const std::string& file) {
+    try {
+        return Json::parse(text, DuplicateKeyCheck(file));
+    } catch (const Json::parse_error& e) {
+        const std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+        const auto line = 1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(end), '\n');
+        std::string what = e.what(); // "[json.exception...] parse error at line L, column C: ..."
+        const std::size_t detail = what.find(": ", what.find("column"));
+        if (detail != std::string::npos)
+            what = what.substr(detail + 2);
+        throw InputError(file, "", "invalid JSON: " + what, int(line));
+    } catch (const Json::exception& e) { // e.g. out_of_range for 1e999, which has no position
+        const std::string what = e.what();
+        throw InputError(file, "", "invalid JSON: " + what.substr(what.find("] ") + 2));
+    }
+}
+
+double parse_units(const Field& root) {
+    constexpr std::pair<std::string_view, double> units[] = {
+        {"m", 1.0}, {"cm", 0.01}, {"mm", 0.001}, {"in", 0.0254}, {"ft", 0.3048}};
+    if (!root.has("units"))
+        return 1.0;
+    const Field field = root.child("units");
+    const std::string unit = field.string();
+    for (const auto& [name, metres] : units)
+        if (unit == name)
+            return metres;
+    field.fail(fmt::format("unknown unit '{}' (known: m, cm, mm, in, ft)", unit));
+}
+
+Vec3 parse_up(const Field& root) {
+    if (!root.has("up"))
+        return {0, 0, 1};
+    const Field field = root.child("up");
+    const Vec3 up = field.vec3();
+    if (length(up) == 0)
+        field.fail("expected a non-zero vector");
+    return normalize(up);
+}
+
+std::vector<std::string> parse_geometry_list(const Field& root) {
+    if (!root.has("geometry"))
+        return {};
+    const Field field = root.child("geometry");
+    if (!field.is_array())
+        return {field.string()};
+    std::vector<std::string> files;
+    for (std::size_t i = 0; i < field.array_size(); ++i)
+        files.push_back(field.element(i).string());
+    return files;
+}
+
+MaterialSpec parse_material(const Field& field, const std::string& name) {
+    field.expect_keys({"reflectance", "emission", "emission_flux_lm", "emission_color", "two_sided",
+                       "emission_two_sided"});
+    if (name.empty())
+        field.fail("a material name must not be empty");
+    MaterialSpec spec;
+    spec.name = name;
+    if (field.has("reflectance"))
+        spec.reflectance = field.child("reflectance").rgb();
+    if (field.has("emission"))
+        spec.emission = field.child("emission").rgb();
+    if (field.has("emission_flux_lm"))
+        spec.emission_flux_lm = field.child("emission_flux_lm").number();
+    if (field.has("emission_color"))
+        spec.emission_color = field.child("emission_color").rgb();
+    if (field.has("two_sided"))
+        spec.two_sided = field.child("two_sided").boolean();
+    if (field.has("emission_two_sided"))
+        spec.emission_two_sided = field.child("emission_two_sided").boolean();
+    if (spec.emission && spec.emission_flux_lm)
+        field.child("emission_flux_lm").fail("give 'emission' or 'emission_flux_lm', not both");
+    if (spec.emission_color && !spec.emission_flux_lm)
+        field.child("emission_color").fail("is only used with 'emission_flux_lm'");
+    return spec;
+}
+
+PolygonSpec parse_polygon(const Field& field, double metres_per_unit) {
+    field.expect_keys({"name", "material", "vertices"});
+    PolygonSpec spec;
+    spec.key = field.path();
+    spec.name = field.has("name") ? field.child("name").string() : field.path();
+    spec.material = field.required("material").string();
+    const Field vertices = field.required("vertices");
+    const std::size_t count = vertices.array_size();
+    if (count < 3)
+        vertices.fail(fmt::format("expected at least 3 vertices, got {}", count));
+    for (std::size_t i = 0; i < count; ++i)
+        spec.vertices.push_back(vertices.element(i).vec3() * metres_per_unit);
+    return spec;
+}
+
+PointLight parse_point_light(const Field& field, double metres_per_unit) {
+    field.expect_keys({"name", "position", "intensity_cd", "flux_lm", "color"});
+    PointLight light;
+    light.name = field.has("name") ? field.child("name").string() : field.path();
+    light.position = field.required("position").vec3() * metres_per_unit;
+    const bool by_intensity = field.has("intensity_cd");
+    if (by_intensity == field.has("flux_lm"))
+        field.fail("give exactly one of 'intensity_cd' and 'flux_lm'");
+    const Field amount = field.child(by_intensity ? "intensity_cd" : "flux_lm");
+    const double value = amount.number();
+    if (value < 0)
+        amount.fail(fmt::format("must be >= 0, got {}", value));
+    const double intensity_cd = by_intensity ? value : value / (4.0 * k_pi); // isotropic
+    Rgb color(1.0f);
+    if (field.has("color")) {
+        const Field color_field = field.child("color");
+        color = color_field.rgb();
+        if (color.r < 0 || color.g < 0 || color.b < 0 || to_photometric(color) <= 0)
+            color_field.fail("expected a non-negative colour with non-zero luminance");
+    }
+    light.intensity = from_photometric(intensity_cd, color);
+    return light;
+}
+
+Vec3 sensor_normal(const Field& field, const Vec3& normal) {
+    if (length(normal) == 0)
+        field.fail("the sensor normal must be a non-zero vector");
+    return normalize(normal);
+}
+
+Sensor parse_sensor(const Field& field, double metres_per_unit) {
+    Sensor sensor;
+    if (field.is_array()) {
+        const std::vector<double> v = field.numbers(6, " [x, y, z, nx, ny, nz]");
+        sensor.position = Vec3(v[0], v[1], v[2]) * metres_per_unit;
+        sensor.normal = sensor_normal(field, Vec3(v[3], v[4], v[5]));
+        return sensor;
+    }
+    field.expect_keys({"name", "position", "normal"});
+    if (field.has("name"))
+        sensor.name = field.child("name").string();
+    sensor.position = field.required("position").vec3() * metres_per_unit;
+    const Field normal = field.required("normal");
+    sensor.normal = sensor_normal(normal, normal.vec3());
+    return sensor;
+}
+
+void parse_sensors(const Field& field, double metres_per_unit, SceneSpec& spec) {
+    if (field.is_object()) {
+        field.expect_keys({"file"});
+        spec.sensor_file = field.required("file").string();
+        return;
+    }
+    const std::size_t count = field.array_size();
+    for (std::size_t i = 0; i < count; ++i)
+        spec.scene.sensors.push_back(parse_sensor(field.element(i), metres_per_unit));
+}
+
+Camera parse_camera(const Field& field, double metres_per_unit, const Vec3& scene_up) {
+    field.expect_keys({"type", "eye", "look_at", "up", "fov_deg", "fov_axis"});
+    if (field.has("type")) {
+        const Field type = field.child("type");
+        if (type.string() != "pinhole")
+            type.fail(fmt::format("unknown camera type '{}' (known: pinhole)", type.string()));
+    }
+    Camera camera;
+    camera.eye = field.required("eye").vec3() * metres_per_unit;
+    camera.look_at = field.required("look_at").vec3() * metres_per_unit;
+    camera.up = field.has("up") ? field.child("up").vec3() : scene_up;
+    if (field.has("fov_deg"))
+        camera.fov_deg = field.child("fov_deg").number();
+    if (field.has("fov_axis")) {
+        const Field axis = field.child("fov_axis");
+        const std::string value = axis.string();
+        if (value != "x" && value != "y")
+            axis.fail(fmt::format("expected \"x\" or \"y\", got \"{}\"", value));
+        camera.fov_axis_x = value == "x";
+    }
+    return camera;
+}
+
+void parse_image(const Field& field, Camera& camera) {
+    field.expect_keys({"width", "height", "spp", "exposure"});
+    if (field.has("width"))
+        camera.width = int(field.child("width").integer(1, 16384));
+    if (field.has("height"))
+        camera.height = int(field.child("height").integer(1, 16384));
+    if (field.has("spp"))
+        camera.samples_per_pixel = int(field.child("spp").integer(1, 1 << 20));
+    if (field.has("exposure"))
+        camera.exposure = field.child("exposure").number();
+}
+
+MesherSettings parse_mesher(const Field& field, double metres_per_unit) {
+    field.expect_keys({"max_edge_length", "planarity_tolerance"});
+    MesherSettings mesher;
+    if (field.has("max_edge_length"))
+        mesher.max_edge_length = field.child("max_edge_length").number() * metres_per_unit;
+    if (field.has("planarity_tolerance"))
+        mesher.planarity_tolerance = field.child("planarity_tolerance").number();
+    return mesher;
+}
+
+SolverSettings parse_solver(const Field& field) {
+    field.expect_keys({"residual", "ambient", "max_shots", "visibility_rays", "row_cache_mb"});
+    SolverSettings solver;
+    if (field.has("residual"))
+        solver.residual = field.child("residual").number();
+    if (field.has("ambient"))
+        solver.ambient = field.child("ambient").boolean();
+    if (field.has("max_shots"))
+        solver.max_shots = field.child("max_shots").integer(0, std::int64_t(1) << 53);
+    if (field.has("visibility_rays"))
+        solver.visibility_rays = int(field.child("visibility_rays").integer(1, 1 << 16));
+    if (field.has("row_cache_mb"))
+        solver.row_cache_mb = field.child("row_cache_mb").number();
+    return solver;
+}
+
+/// materials and polygons: what the geometry files are merged with.
+void parse_surfaces(const Field& root, SceneSpec& spec) {
+    spec.geometry = parse_geometry_list(root);
+    if (root.has("materials"))
+        for (const auto& [name, field] : root.child("materials").members())
+            spec.materials.push_back(parse_material(field, name));
+    if (root.has("polygons")) {
+        const Field polygons = root.child("polygons");
+        for (std::size_t i = 0; i < polygons.array_size(); ++i)
+            spec.polygons.push_back(parse_polygon(polygons.element(i), spec.metres_per_unit));
+    }
+    if (spec.geometry.empty() && spec.polygons.empty())
+        Field(Json(), "geometry", spec.scene.file)
+            .fail("the scene has no geometry: give 'geometry' files or inline 'polygons'");
+}
+
+/// point_lights, sensors, camera and image, mesher, solver.
+void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
+    const double scale = spec.metres_per_unit;
+    Scene& scene = spec.scene;
+    if (root.has("point_lights")) {
+        const Field lights = root.child("point_lights");
+        for (std::size_t i = 0; i < lights.array_size(); ++i)
+            scene.point_lights.push_back(parse_point_light(lights.element(i), scale));
+    }
+    if (root.has("sensors"))
+        parse_sensors(root.child("sensors"), scale, spec);
+    if (root.has("camera"))
+        scene.camera = parse_camera(root.child("camera"), scale, up);
+    if (root.has("image")) {
+        if (!scene.camera)
+            root.child("image").fail("'image' needs a 'camera'");
+        parse_image(root.child("image"), *scene.camera);
+    }
+    if (root.has("mesher"))
+        scene.mesher = parse_mesher(root.child("mesher"), scale);
+    if (root.has("solver"))
+        scene.solver = parse_solver(root.child("solver"));
+}
+
+} // namespace
+
+SceneSpec parse_scene_json(const std::string& text, const std::string& file_name) {
+    const Json json = parse_json(text, file_name);
+    const Field root(json, "", file_name);
+    root.expect_keys({"name", "units", "up", "geometry", "polygons", "materials", "point_lights",
+                      "sensors", "camera", "image", "mesher", "solver"});
+    SceneSpec spec;
+    spec.scene.file = file_name;
+    if (root.has("name"))
+        spec.scene.name = root.child("name").string();
+    spec.metres_per_unit = parse_units(root);
+    const Vec3 up = parse_up(root);
+    parse_surfaces(root, spec);
+    parse_settings(root, up, spec);
+    return spec;
+}
+
+} // namespace penumbra

@@ -1,0 +1,48 @@
+#pragma once
+// Private to penumbra_core: the JSON half of the scene loader (format v1,
+// docs/scene-format.md). It type-checks every key, converts lengths to metres and photometric
+// values to radiometric ones; files it names (geometry, .pts) are read by scene_io.cpp.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace penumbra {
+
+/// \brief A `materials` entry: only the keys the file gives are set.
+struct MaterialSpec {
+    std::string name;
+    std::optional<Rgb> reflectance;
+    std::optional<Rgb> emission; ///< W/(sr·m²)
+    std::optional<double> emission_flux_lm;
+    std::optional<Rgb> emission_color; ///< only with emission_flux_lm
+    std::optional<bool> two_sided;
+    std::optional<bool> emission_two_sided;
+};
+
+/// \brief A `polygons` entry, vertices already in metres.
+struct PolygonSpec {
+    std::string key; ///< "polygons[3]", for messages
+    std::string name;
+    std::string material;
+    std::vector<Vec3> vertices;
+};
+
+/// \brief Everything the scene file says, before its files are read.
+struct SceneSpec {
+    /// name, file, point_lights, inline sensors, camera, mesher and solver are final.
+    Scene scene;
+    double metres_per_unit = 1.0;
+    std::vector<std::string> geometry;      ///< as written, relative to the scene folder
+    std::optional<std::string> sensor_file; ///< `sensors.file`, as written
+    std::vector<MaterialSpec> materials;
+    std::vector<PolygonSpec> polygons;
+};
+
+/// \brief Parses and type-checks the text of a scene file. Throws InputError naming
+///        \p file_name and the dotted key (or the line, for malformed JSON).
+SceneSpec parse_scene_json(const std::string& text, const std::string& file_name);
+
+} // namespace penumbra

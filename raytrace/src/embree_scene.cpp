@@ -1,0 +1,297 @@
+// Embree 3 scene of the radiosity mesh's geometry elements (one triangle geometry, primitive p =
+// geometry_elements[p]). Device and scene live in move-only RAII handles; the device's error
+// callback records the first error and the wrapper throws ExternalError after the failing call
+// returns, as Embree's minimal.cpp tutorial recommends.
+
+#include "raytrace/raytrace.h"
+
+#include "core/error.h"
+
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <string>
+#include <tuple>
+#include <utility>
+
+namespace penumbra::raytrace {
+
+namespace {
+
+const char* error_name(RTCError code) {
+    switch (code) {
+    case RTC_ERROR_NONE:
+        return "no error";
+    case RTC_ERROR_UNKNOWN:
+        return "unknown error";
+    case RTC_ERROR_INVALID_ARGUMENT:
+        return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION:
+        return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY:
+        return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+        return "unsupported CPU";
+    case RTC_ERROR_CANCELLED:
+        return "cancelled";
+    }
+    return "unrecognised error code";
+}
+
+/// The first error Embree reported through the device callback since the last check.
+class ErrorRecord {
+public:
+    static void callback(void* user, RTCError code, const char* message) {
+        static_cast<ErrorRecord*>(user)->record(code, message);
+    }
+
+    /// Throws ExternalError naming \p call if an error was recorded, and clears it.
+    void throw_if_failed(const char* call) {
+        std::lock_guard lock(mutex_);
+        if (code_ == RTC_ERROR_NONE)
+            return;
+        std::string text =
+            fmt::format("Embree {} failed: {} ({})", call, message_, error_name(code_));
+        code_ = RTC_ERROR_NONE;
+        message_.clear();
+        throw ExternalError(text);
+    }
+
+private:
+    void record(RTCError code, const char* message) {
+        std::lock_guard lock(mutex_);
+        if (code_ != RTC_ERROR_NONE)
+            return;
+        code_ = code;
+        message_ = message ? message : "";
+    }
+
+    std::mutex mutex_;
+    RTCError code_ = RTC_ERROR_NONE;
+    std::string message_;
+};
+
+/// Move-only owner of one Embree reference (device, scene or geometry).
+template <typename Handle, void (*release)(Handle)> class Owned {
+public:
+    Owned() = default;
+    explicit Owned(Handle h) : handle_(h) {}
+    ~Owned() {
+        if (handle_)
+            release(handle_);
+    }
+    Owned(Owned&& o) noexcept : handle_(std::exchange(o.handle_, nullptr)) {}
+    Owned& operator=(Owned&& o) noexcept {
+        if (this != &o) {
+            if (handle_)
+                release(handle_);
+            handle_ = std::exchange(o.handle_, nullptr);
+        }
+        return *this;
+    }
+    Owned(const Owned&) = delete;
+    Owned& operator=(const Owned&) = delete;
+
+    Handle get() const { return handle_; }
+
+private:
+    Handle handle_ = nullptr;
+};
+
+using DeviceHandle = Owned<RTCDevice, rtcReleaseDevice>;
+using SceneHandle = Owned<RTCScene, rtcReleaseScene>;
+using GeometryHandle = Owned<RTCGeometry, rtcReleaseGeometry>;
+
+/// Rejects meshes whose indices would make Embree read out of bounds.
+void check_mesh(const RadiosityMesh& mesh) {
+    const std::size_t nv = mesh.vertex_count(), ne = mesh.element_count();
+    if (mesh.element_patch.size() != ne || mesh.element_twin.size() != ne)
+        throw InternalError("EmbreeScene: element arrays of the mesh differ in size");
+    for (const auto& t : mesh.triangles)
+        if (t[0] >= nv || t[1] >= nv || t[2] >= nv)
+            throw InternalError("EmbreeScene: a triangle refers to a missing vertex");
+    for (std::uint32_t e : mesh.geometry_elements)
+        if (e >= ne || mesh.element_patch[e] >= mesh.patches.size())
+            throw InternalError(fmt::format("EmbreeScene: geometry element {} is invalid", e));
+    for (std::int32_t twin : mesh.element_twin)
+        if (twin >= std::int32_t(ne))
+            throw InternalError(fmt::format("EmbreeScene: twin element {} is invalid", twin));
+}
+
+RTCRay make_ray(const Vec3f& origin, const Vec3f& direction, float tnear, float tfar) {
+    RTCRay ray{};
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.tnear = tnear;
+    ray.dir_x = direction.x;
+    ray.dir_y = direction.y;
+    ray.dir_z = direction.z;
+    ray.time = 0.0f;
+    ray.tfar = tfar;
+    ray.mask = 0xffffffffu;
+    ray.flags = 0;
+    return ray;
+}
+
+/// Barycentrics (of vertices 1 and 2) of point \p p in the triangle (a, b, c), clamped into
+/// the triangle against rounding.
+std::pair<float, float> barycentrics(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    Vec3 n = cross(b - a, c - a);
+    double area2 = dot(n, n);
+    if (!(area2 > 0))
+        return {0.0f, 0.0f};
+    double w1 = std::max(0.0, dot(cross(p - a, c - a), n) / area2);
+    double w2 = std::max(0.0, dot(cross(b - a, p - a), n) / area2);
+    double sum = w1 + w2;
+    if (sum > 1.0) {
+        w1 /= sum;
+        w2 /= sum;
+    }
+    return {float(w1), float(w2)};
+}
+
+} // namespace
+
+struct EmbreeScene::Impl {
+    // Declaration order is release order reversed: the scene goes before the device, and the
+    // error record, which the device's callback points to, outlives both.
+    ErrorRecord errors;
+    DeviceHandle device;
+    SceneHandle scene;
+    std::atomic<std::uint64_t> rays{0};
+
+    void build(const RadiosityMesh& mesh);
+    void add_triangles(const RadiosityMesh& mesh);
+};
+
+void EmbreeScene::Impl::build(const RadiosityMesh& mesh) {
+    device = DeviceHandle(rtcNewDevice(nullptr));
+    if (!device.get())
+        throw ExternalError(fmt::format("Embree rtcNewDevice failed ({}); check that the CPU "
+                                        "supports SSE2 and that memory is available",
+                                        error_name(rtcGetDeviceError(nullptr))));
+    rtcSetDeviceErrorFunction(device.get(), &ErrorRecord::callback, &errors);
+
+    scene = SceneHandle(rtcNewScene(device.get()));
+    errors.throw_if_failed("rtcNewScene");
+    rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_HIGH);
+    errors.throw_if_failed("scene set-up");
+
+    if (!mesh.geometry_elements.empty())
+        add_triangles(mesh);
+    rtcCommitScene(scene.get());
+    errors.throw_if_failed("rtcCommitScene");
+}
+
+void EmbreeScene::Impl::add_triangles(const RadiosityMesh& mesh) {
+    GeometryHandle geometry(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE));
+    errors.throw_if_failed("rtcNewGeometry");
+    rtcSetGeometryBuildQuality(geometry.get(), RTC_BUILD_QUALITY_HIGH);
+
+    // Embree allocates these buffers itself, padded for its 16-byte loads; the mesh's own
+    // arrays cannot be shared because they carry no padding and include the back sides.
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), mesh.vertex_count()));
+    auto* indices = static_cast<std::uint32_t*>(
+        rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(std::uint32_t), mesh.geometry_elements.size()));
+    errors.throw_if_failed("rtcSetNewGeometryBuffer");
+
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+        vertices[3 * v + 0] = mesh.positions[v].x;
+        vertices[3 * v + 1] = mesh.positions[v].y;
+        vertices[3 * v + 2] = mesh.positions[v].z;
+    }
+    for (std::size_t p = 0; p < mesh.geometry_elements.size(); ++p) {
+        const auto& t = mesh.triangles[mesh.geometry_elements[p]];
+        std::copy(t.begin(), t.end(), indices + 3 * p);
+    }
+    rtcCommitGeometry(geometry.get());
+    rtcAttachGeometry(scene.get(), geometry.get()); // the scene keeps its own reference
+    errors.throw_if_failed("rtcAttachGeometry");
+}
+
+EmbreeScene::EmbreeScene(const RadiosityMesh& mesh) : impl_(std::make_unique<Impl>()), mesh_(mesh) {
+    check_mesh(mesh);
+    impl_->build(mesh);
+}
+
+EmbreeScene::~EmbreeScene() = default;
+
+void EmbreeScene::occluded(std::span<const Segment> segments, std::span<std::uint8_t> out) const {
+    if (segments.size() != out.size())
+        throw InternalError(fmt::format("EmbreeScene::occluded: {} segments but {} results",
+                                        segments.size(), out.size()));
+    constexpr std::size_t k_batch = 256;
+    std::array<RTCRay, k_batch> rays;
+    RTCIntersectContext context;
+    for (std::size_t begin = 0; begin < segments.size(); begin += k_batch) {
+        const std::size_t count = std::min(k_batch, segments.size() - begin);
+        for (std::size_t i = 0; i < count; ++i) {
+            const Segment& s = segments[begin + i];
+            rays[i] = make_ray(s.origin, s.direction, s.tnear, s.tfar);
+            rays[i].id = unsigned(i);
+        }
+        rtcInitIntersectContext(&context);
+        rtcOccluded1M(impl_->scene.get(), &context, rays.data(), unsigned(count), sizeof(RTCRay));
+        // Embree marks an occluded ray by setting tfar to -inf.
+        for (std::size_t i = 0; i < count; ++i)
+            out[begin + i] = rays[i].tfar == -std::numeric_limits<float>::infinity() ? 1 : 0;
+    }
+    impl_->rays.fetch_add(segments.size(), std::memory_order_relaxed);
+    impl_->errors.throw_if_failed("rtcOccluded1M");
+}
+
+std::uint64_t EmbreeScene::rays_traced() const {
+    return impl_->rays.load(std::memory_order_relaxed);
+}
+
+EmbreeScene::Hit EmbreeScene::intersect(const Vec3f& origin, const Vec3f& direction, float tnear,
+                                        float tfar) const {
+    RTCRayHit rayhit{};
+    rayhit.ray = make_ray(origin, direction, tnear, tfar);
+    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(impl_->scene.get(), &context, &rayhit);
+    impl_->rays.fetch_add(1, std::memory_order_relaxed);
+
+    Hit hit;
+    if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return hit;
+    hit.t = rayhit.ray.tfar;
+    const std::uint32_t front = mesh_.geometry_elements[rayhit.hit.primID];
+    if (dot(Vec3(direction), mesh_.patch_of(front).normal) < 0) {
+        hit.element = std::int32_t(front);
+        hit.u = rayhit.hit.u;
+        hit.v = rayhit.hit.v;
+        return hit;
+    }
+    const std::int32_t twin = mesh_.element_twin[front];
+    if (twin < 0) {
+        hit.back_of_one_sided = true;
+        return hit;
+    }
+    // The twin has its own vertices in the opposite winding: locate the hit point (taken on
+    // the front triangle, so it lies in the plane) in the twin's own vertex order.
+    const auto& f = mesh_.triangles[front];
+    const double u = rayhit.hit.u, v = rayhit.hit.v;
+    const Vec3 p =
+        mesh_.vertex(f[0]) * (1.0 - u - v) + mesh_.vertex(f[1]) * u + mesh_.vertex(f[2]) * v;
+    const auto& b = mesh_.triangles[std::uint32_t(twin)];
+    std::tie(hit.u, hit.v) =
+        barycentrics(p, mesh_.vertex(b[0]), mesh_.vertex(b[1]), mesh_.vertex(b[2]));
+    hit.element = twin;
+    return hit;
+}
+
+} // namespace penumbra::raytrace

@@ -1,0 +1,385 @@
+#include "core/scene_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <functional>
+#include <initializer_list>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/rgb.h"
+
+#include "common/test_util.h"
+
+namespace penumbra {
+namespace {
+
+std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
+    const std::string path = dir + "/" + name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}
+
+/// Runs \p load, expects an InputError, and checks that its message holds every part.
+void expect_input_error(const std::function<void()>& load,
+                        std::initializer_list<std::string> parts) {
+    try {
+        load();
+        ADD_FAILURE() << "no InputError thrown";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        for (const std::string& part : parts)
+            EXPECT_NE(message.find(part), std::string::npos)
+                << "'" << part << "' missing from: " << message;
+    }
+}
+
+/// A scene file with one emitting 1 m × 1 m inline square facing +z, plus \p extra keys.
+std::string lamp_scene(const std::string& extra = "") {
+    return R"json({
+  "polygons": [{"name": "lamp", "material": "lamp",
+                "vertices": [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]}],
+  "materials": {"lamp": {"emission": 1}})json" +
+           extra + "\n}\n";
+}
+
+Vec3 newell_normal(const Polygon& polygon) {
+    Vec3 n;
+    const auto& v = polygon.vertices;
+    for (std::size_t i = 0; i < v.size(); ++i)
+        n += cross(v[i], v[(i + 1) % v.size()]);
+    return n;
+}
+
+double area_m2(const Polygon& polygon) {
+    return 0.5 * length(newell_normal(polygon));
+}
+
+const Material& material_named(const Scene& scene, const std::string& name) {
+    for (const Material& m : scene.materials)
+        if (m.name == name)
+            return m;
+    throw std::runtime_error("no material " + name);
+}
+
+TEST(SceneIo, LoadsCornellBox) {
+    const Scene scene = load_scene(test::source_path("data/cornell/scene.json"));
+    EXPECT_EQ(scene.name, "cornell-box");
+    ASSERT_EQ(scene.polygons.size(), 16u); // 5 walls, 5 + 5 block faces, 1 light
+    for (const Polygon& polygon : scene.polygons)
+        EXPECT_EQ(polygon.vertices.size(), 4u) << polygon.source;
+    EXPECT_EQ(scene.materials.size(), 4u); // assimp's unused default material is dropped
+
+    const Polygon& floor = scene.polygons[0];
+    EXPECT_EQ(floor.name, "floor");
+    EXPECT_EQ(floor.source, "cornell.obj:face 1");
+    EXPECT_NEAR(floor.vertices[0].x, 0.5528, 1e-7); // 552.8 mm
+    EXPECT_NEAR(floor.vertices[3].z, 0.5592, 1e-7);
+    EXPECT_GT(newell_normal(floor).y, 0); // faces up, into the box
+    EXPECT_EQ(scene.polygons[15].name, "light");
+    EXPECT_EQ(scene.polygons[15].source, "cornell.obj:face 16");
+
+    const Material& light = material_named(scene, "light");
+    EXPECT_EQ(light.emission, Rgb(17, 12, 4));
+    EXPECT_FALSE(light.emission_two_sided);
+    const Material& white = material_named(scene, "white");
+    EXPECT_EQ(white.reflectance, Rgb(0.725f, 0.71f, 0.68f));
+    EXPECT_TRUE(white.emission.is_black());
+    EXPECT_EQ(material_named(scene, "red").reflectance, Rgb(0.63f, 0.065f, 0.05f));
+    EXPECT_EQ(material_named(scene, "green").reflectance, Rgb(0.14f, 0.45f, 0.091f));
+
+    ASSERT_TRUE(scene.camera.has_value());
+    const Camera& camera = *scene.camera;
+    EXPECT_NEAR(camera.eye.x, 0.278, 1e-12);
+    EXPECT_NEAR(camera.eye.y, 0.273, 1e-12);
+    EXPECT_NEAR(camera.eye.z, -0.8, 1e-12);
+    EXPECT_NEAR(camera.look_at.z, 0.0, 1e-12);
+    EXPECT_EQ(camera.up, Vec3(0, 1, 0));
+    EXPECT_NEAR(camera.fov_deg, 39.3077, 1e-4);
+    EXPECT_TRUE(camera.fov_axis_x);
+    EXPECT_EQ(camera.width, 256);
+    EXPECT_EQ(camera.height, 256);
+    EXPECT_NEAR(scene.mesher.max_edge_length, 0.040, 1e-12); // 40 mm
+    EXPECT_DOUBLE_EQ(scene.solver.residual, 1e-3);
+}
+
+TEST(SceneIo, CornellLightPowerInMetres) {
+    const Scene scene = load_scene(test::source_path("data/cornell/scene.json"));
+    const Polygon& light = scene.polygons.back();
+    ASSERT_EQ(scene.materials[light.material].name, "light");
+    const double area = area_m2(light);
+    EXPECT_NEAR(area, 0.130 * 0.105, 1e-9);
+    EXPECT_LT(newell_normal(light).y, 0); // emits downward
+    const Rgb& radiance = scene.materials[light.material].emission;
+    const double expected[3] = {0.7290, 0.5146, 0.1715}; // π · L · A, W
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(k_pi * radiance[c] * area, expected[c], 1e-3 * expected[c]) << c;
+}
+
+TEST(SceneIo, EmissionFluxLmBecomesRadiance) {
+    const std::string dir = test::temp_dir("scene-flux");
+    // 200 cm × 100 cm = 2 m², 1000 lm: L = 1000 / (π · 2) cd/m².
+    write_file(dir, "scene.json", R"json({
+  "units": "cm",
+  "polygons": [
+    {"name": "a", "material": "panel",
+     "vertices": [[0, 0, 0], [200, 0, 0], [200, 100, 0], [0, 100, 0]]},
+    {"name": "b", "material": "both",
+     "vertices": [[0, 0, 0], [100, 0, 0], [100, 100, 0], [0, 100, 0]]}
+  ],
+  "materials": {
+    "panel": {"emission_flux_lm": 1000, "emission_color": [1, 0.5, 0.25]},
+    "both": {"emission_flux_lm": 1000, "emission_two_sided": true}
+  }
+})json");
+    const Scene scene = load_scene(dir + "/scene.json");
+    const Material& panel = material_named(scene, "panel");
+    EXPECT_NEAR(to_photometric(panel.emission), 1000.0 / (k_pi * 2.0), 1e-4);
+    EXPECT_NEAR(panel.emission.g / panel.emission.r, 0.5, 1e-6);
+    EXPECT_NEAR(panel.emission.b / panel.emission.r, 0.25, 1e-6);
+    // Two-sided: 1 m² per side, 2 m² in all.
+    const Material& both = material_named(scene, "both");
+    EXPECT_NEAR(to_photometric(both.emission), 1000.0 / (k_pi * 2.0), 1e-4);
+    EXPECT_EQ(both.emission.r, both.emission.b);
+    // Validating again changes nothing.
+    Scene again = scene;
+    validate_scene(again);
+    EXPECT_EQ(again.materials[0].emission, scene.materials[0].emission);
+}
+
+TEST(SceneIo, PointLightPhotometry) {
+    const std::string dir = test::temp_dir("scene-point");
+    write_file(dir, "scene.json", lamp_scene(R"json(,
+  "units": "mm",
+  "point_lights": [
+    {"name": "bulb", "position": [1000, 2000, 3000], "flux_lm": 10000},
+    {"position": [0, 0, 500], "intensity_cd": 500, "color": [1, 0.5, 0.5]}
+  ])json"));
+    const Scene scene = load_scene(dir + "/scene.json");
+    ASSERT_EQ(scene.point_lights.size(), 2u);
+    const PointLight& bulb = scene.point_lights[0];
+    EXPECT_EQ(bulb.name, "bulb");
+    EXPECT_NEAR(bulb.position.y, 2.0, 1e-12);
+    EXPECT_NEAR(to_photometric(bulb.intensity), 10000.0 / (4.0 * k_pi), 1e-3);
+    EXPECT_NEAR(bulb.intensity.r, 10000.0 / (4.0 * k_pi) / 179.0, 1e-5); // white: cd / 179
+    const PointLight& red = scene.point_lights[1];
+    EXPECT_EQ(red.name, "point_lights[1]");
+    EXPECT_NEAR(to_photometric(red.intensity), 500.0, 1e-3);
+    EXPECT_NEAR(red.intensity.g / red.intensity.r, 0.5, 1e-6);
+}
+
+TEST(SceneIo, SensorsInlineAndFromPtsFile) {
+    const std::string dir = test::temp_dir("scene-sensors");
+    write_file(dir, "scene.json", lamp_scene(R"json(,
+  "sensors": [{"name": "desk", "position": [1, 2, 0.85], "normal": [0, 0, 2]},
+              [3, 4, 0.85, 0, 3, 4]])json"));
+    Scene scene = load_scene(dir + "/scene.json");
+    ASSERT_EQ(scene.sensors.size(), 2u);
+    EXPECT_EQ(scene.sensors[0].name, "desk");
+    EXPECT_EQ(scene.sensors[0].normal, Vec3(0, 0, 1));
+    EXPECT_EQ(scene.sensors[1].position, Vec3(3, 4, 0.85));
+    EXPECT_NEAR(scene.sensors[1].normal.y, 0.6, 1e-12);
+    EXPECT_NEAR(scene.sensors[1].normal.z, 0.8, 1e-12);
+
+    write_file(dir, "grid.pts", "# workplane\n500 500 850 0 0 1\n\n1000 500 850 0 0 5  # east\n");
+    write_file(dir, "pts.json",
+               lamp_scene(R"json(, "units": "mm", "sensors": {"file": "grid.pts"})json"));
+    scene = load_scene(dir + "/pts.json");
+    ASSERT_EQ(scene.sensors.size(), 2u);
+    EXPECT_NEAR(scene.sensors[1].position.x, 1.0, 1e-12);
+    EXPECT_NEAR(scene.sensors[1].position.z, 0.85, 1e-12);
+    EXPECT_EQ(scene.sensors[1].normal, Vec3(0, 0, 1));
+
+    write_file(dir, "bad.pts", "0 0 0 0 0 1\n# fine\n1 2 3 0 0\n");
+    write_file(dir, "bad.json", lamp_scene(R"json(, "sensors": {"file": "bad.pts"})json"));
+    expect_input_error([&] { load_scene(dir + "/bad.json"); }, {"bad.pts:3", "expected 6 numbers"});
+    write_file(dir, "zero.pts", "0 0 0 0 0 0\n");
+    write_file(dir, "zero.json", lamp_scene(R"json(, "sensors": {"file": "zero.pts"})json"));
+    expect_input_error([&] { load_scene(dir + "/zero.json"); }, {"zero.pts:1", "normal is zero"});
+}
+
+/// One triangle (0,0,0), (1,0,0), (0,1,0) facing +z, used by node "plain" and, under a parent
+/// translated by +10 in x, by node "mirrored" scaled by (−2, 1, 1). \p buffer is the buffer
+/// entry: an external .bin or the GLB chunk.
+std::string triangle_gltf(const std::string& buffer) {
+    return R"json({
+  "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"name": "plain", "mesh": 0},
+            {"name": "parent", "translation": [10, 0, 0], "children": [2]},
+            {"name": "mirrored", "mesh": 0, "scale": [-2, 1, 1]}],
+  "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+  "materials": [{"name": "glow", "emissiveFactor": [1, 0.5, 0.25],
+                 "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.3, 0.4, 1]}}],
+  "buffers": [)json" +
+           buffer + R"json(],
+  "bufferViews": [{"buffer": 0, "byteLength": 36}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}]
+})json";
+}
+
+const float k_triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+
+/// A binary glTF: 12-byte header, then a JSON chunk and a BIN chunk, each 4-byte aligned.
+void write_glb(const std::string& path, std::string json) {
+    json.resize((json.size() + 3) / 4 * 4, ' ');
+    const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<char*>(&v), 4); };
+    const std::string bin(reinterpret_cast<const char*>(k_triangle), sizeof(k_triangle));
+    const std::size_t total = 12 + 8 + json.size() + 8 + bin.size();
+    std::ofstream(path, std::ios::binary)
+        << u32(0x46546C67) << u32(2) << u32(std::uint32_t(total))     // "glTF", version 2
+        << u32(std::uint32_t(json.size())) << u32(0x4E4F534A) << json // "JSON"
+        << u32(std::uint32_t(bin.size())) << u32(0x004E4942) << bin;  // "BIN\0"
+}
+
+void expect_triangle_scene(const Scene& scene, const std::string& file) {
+    ASSERT_EQ(scene.polygons.size(), 2u) << file;
+    ASSERT_EQ(scene.materials.size(), 1u) << file; // assimp's extra default material is dropped
+    EXPECT_EQ(scene.materials[0].name, "glow");
+    EXPECT_NEAR(scene.materials[0].reflectance.g, 0.3f, 1e-6);
+    EXPECT_EQ(scene.materials[0].emission, Rgb(1, 0.5f, 0.25f));
+    const Polygon& plain = scene.polygons[0];
+    const Polygon& mirrored = scene.polygons[1];
+    EXPECT_EQ(plain.name, "plain");
+    EXPECT_EQ(mirrored.name, "mirrored");
+    EXPECT_EQ(mirrored.source, file + ":face 2");
+    EXPECT_NEAR(area_m2(mirrored), 1.0, 1e-6); // scaled by 2 in x
+    EXPECT_GT(newell_normal(plain).z, 0);
+    EXPECT_GT(newell_normal(mirrored).z, 0); // the front side survives the mirror
+    double min_x = 1e9;
+    for (const Vec3& v : mirrored.vertices)
+        min_x = std::min(min_x, v.x);
+    EXPECT_NEAR(min_x, 8.0, 1e-9); // 10 − 2 · 1
+}
+
+TEST(SceneIo, GltfTransformsAndMirrors) {
+    const std::string dir = test::temp_dir("scene-gltf");
+    std::ofstream(dir + "/tri.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(k_triangle), sizeof(k_triangle));
+    write_file(dir, "tri.gltf", triangle_gltf(R"json({"uri": "tri.bin", "byteLength": 36})json"));
+    write_file(dir, "gltf.json", R"json({"geometry": ["tri.gltf"]})json");
+    expect_triangle_scene(load_scene(dir + "/gltf.json"), "tri.gltf");
+
+    write_glb(dir + "/tri.glb", triangle_gltf(R"json({"byteLength": 36})json"));
+    write_file(dir, "glb.json", R"json({"geometry": "tri.glb"})json");
+    expect_triangle_scene(load_scene(dir + "/glb.json"), "tri.glb");
+}
+
+TEST(SceneIo, MaterialOverridesAndIgnoredPrimitives) {
+    const std::string dir = test::temp_dir("scene-override");
+    write_file(dir, "a.mtl", "newmtl lamp\nKd 0.1 0.2 0.3\nKe 5 5 5\n");
+    write_file(dir, "a.obj",
+               "mtllib a.mtl\no quad\nusemtl lamp\nv 0 0 0\nv 1 0 0\nv 1 1 0\n"
+               "v 0 1 0\nf 1 2 3 4\nl 1 2\np 3\n");
+    write_file(dir, "b.obj", "o tri\nv 0 0 1\nv 1 0 1\nv 0 1 1\nf 1 2 3\n");
+    write_file(dir, "scene.json", R"json({"geometry": ["a.obj", "b.obj"],
+  "materials": {"lamp": {"reflectance": 0.4},
+                "DefaultMaterial": {"reflectance": [0.3, 0.3, 0.3]}}})json");
+    const Scene scene = load_scene(dir + "/scene.json");
+    ASSERT_EQ(scene.polygons.size(), 2u); // the line and the point are skipped
+    EXPECT_EQ(scene.polygons[0].name, "quad");
+    EXPECT_EQ(scene.polygons[1].name, "tri");
+    EXPECT_EQ(scene.polygons[1].source, "b.obj:face 1");
+    const Material& lamp = material_named(scene, "lamp");
+    EXPECT_EQ(lamp.reflectance, Rgb(0.4f));
+    EXPECT_EQ(lamp.emission, Rgb(5.0f)); // not given in the scene file: kept from the MTL
+    EXPECT_EQ(material_named(scene, "DefaultMaterial").reflectance, Rgb(0.3f));
+}
+
+TEST(SceneIo, MissingFilesNameTheFile) {
+    const std::string dir = test::temp_dir("scene-missing");
+    expect_input_error([&] { load_scene(dir + "/nope.json"); }, {"nope.json", "not found"});
+    write_file(dir, "scene.json", R"json({"geometry": "missing.obj"})json");
+    expect_input_error([&] { load_scene(dir + "/scene.json"); },
+                       {"missing.obj", "'geometry'", "not found"});
+    write_file(dir, "broken.obj", "v 0 0 0\nf 1 2 3\n");
+    write_file(dir, "broken.json", R"json({"geometry": "broken.obj"})json");
+    expect_input_error([&] { load_scene(dir + "/broken.json"); },
+                       {"broken.obj", "'geometry'", "vertex index out of range"});
+}
+
+TEST(SceneIo, MalformedJsonNamesTheLine) {
+    const std::string dir = test::temp_dir("scene-malformed");
+    write_file(dir, "scene.json", "{\n  \"name\": \"x\",\n  \"units\": mm\n}\n");
+    try {
+        load_scene(dir + "/scene.json");
+        ADD_FAILURE() << "no InputError thrown";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.line(), 3);
+        EXPECT_NE(std::string(e.what()).find("scene.json:3"), std::string::npos) << e.what();
+    }
+    write_file(dir, "twice.json", lamp_scene(R"json(, "units": "m", "units": "mm")json"));
+    expect_input_error([&] { load_scene(dir + "/twice.json"); }, {"twice.json", "'units'"});
+}
+
+TEST(SceneIo, UnknownKeysAreErrors) {
+    const std::string dir = test::temp_dir("scene-unknown");
+    write_file(dir, "top.json", lamp_scene(R"json(, "emission_two_sided": false)json"));
+    expect_input_error([&] { load_scene(dir + "/top.json"); },
+                       {"top.json", "'emission_two_sided'", "unknown key", "known: name, units"});
+    write_file(dir, "nested.json", R"json({
+  "polygons": [{"material": "light", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}],
+  "materials": {"light": {"emision": [1, 1, 1]}}
+})json");
+    expect_input_error(
+        [&] { load_scene(dir + "/nested.json"); },
+        {"nested.json", "'materials.light.emision'", "unknown key 'emision'", "emission_flux_lm"});
+}
+
+TEST(SceneIo, WrongTypesNameTheKey) {
+    const std::string dir = test::temp_dir("scene-types");
+    write_file(dir, "a.json", R"json({
+  "polygons": [{"material": "lamp", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}],
+  "materials": {"lamp": {"emission": 1}, "white": {"reflectance": "white"}}
+})json");
+    expect_input_error(
+        [&] { load_scene(dir + "/a.json"); },
+        {"a.json", "'materials.white.reflectance'", "expected 3 numbers", "got string"});
+    write_file(dir, "b.json", lamp_scene(R"json(, "image": {"width": 256})json"));
+    expect_input_error([&] { load_scene(dir + "/b.json"); }, {"'image'", "needs a 'camera'"});
+    write_file(dir, "c.json", lamp_scene(R"json(, "solver": {"visibility_rays": 2.5})json"));
+    expect_input_error([&] { load_scene(dir + "/c.json"); },
+                       {"'solver.visibility_rays'", "expected an integer"});
+    write_file(dir, "d.json", lamp_scene(R"json(, "units": "yards")json"));
+    expect_input_error([&] { load_scene(dir + "/d.json"); }, {"'units'", "unknown unit 'yards'"});
+    write_file(dir, "e.json", lamp_scene(R"json(, "solver": {"residual": 2})json"));
+    expect_input_error([&] { load_scene(dir + "/e.json"); }, {"'solver.residual'", "(0, 1)"});
+}
+
+TEST(SceneIo, BadGeometryIsReported) {
+    const std::string dir = test::temp_dir("scene-bad-geometry");
+    write_file(dir, "nan.obj", "o wall\nv 0 0 0\nv 1 0 0\nv nan 0 0\nf 1 2 3\n");
+    write_file(dir, "nan.json", lamp_scene(R"json(, "geometry": "nan.obj")json"));
+    expect_input_error(
+        [&] { load_scene(dir + "/nan.json"); },
+        {"nan.json", "polygon 'wall'", "nan.obj:face 1", "vertex 3 is not finite", "(nan, 0, 0)"});
+    write_file(dir, "flat.json", R"json({
+  "polygons": [{"name": "sliver", "material": "lamp",
+                "vertices": [[0, 0, 0], [1, 1, 1], [2, 2, 2]]}],
+  "materials": {"lamp": {"emission": 1}}
+})json");
+    expect_input_error([&] { load_scene(dir + "/flat.json"); },
+                       {"flat.json", "'polygons[0]'", "polygon 'sliver'", "zero-area face"});
+    write_file(dir, "nomat.json", R"json({
+  "polygons": [{"material": "glass", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}]
+})json");
+    expect_input_error([&] { load_scene(dir + "/nomat.json"); },
+                       {"'polygons[0].material'", "unknown material 'glass'"});
+}
+
+TEST(SceneIo, SceneWithoutEmitterIsAnError) {
+    const std::string dir = test::temp_dir("scene-dark");
+    write_file(dir, "dark.json", R"json({
+  "polygons": [{"material": "grey", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}],
+  "materials": {"grey": {"reflectance": 0.5}}
+})json");
+    expect_input_error([&] { load_scene(dir + "/dark.json"); },
+                       {"dark.json", "scene has no emitter", "point_lights"});
+}
+
+} // namespace
+} // namespace penumbra

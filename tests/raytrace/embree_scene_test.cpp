@@ -1,0 +1,384 @@
+// EmbreeScene visibility and intersection on hand-made meshes, and the camera renderer.
+
+#include "raytrace/raytrace.h"
+
+#include "common/test_util.h"
+#include "core/error.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace penumbra::raytrace {
+namespace {
+
+/// Appends the quad (a, b, c, d), counter-clockwise seen from its front, as two triangles per
+/// side; a two-sided quad gets a back patch with its own vertices and reversed winding.
+/// Returns the front patch id (the back patch, if any, is the next one).
+std::uint32_t add_quad(RadiosityMesh& m, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d,
+                       bool two_sided) {
+    const Vec3 corners[4] = {a, b, c, d};
+    const Vec3 normal = normalize(cross(b - a, c - a));
+    const auto front_patch = std::uint32_t(m.patches.size());
+    const auto front_element = std::uint32_t(m.element_count());
+    for (int side = 0; side < (two_sided ? 2 : 1); ++side) {
+        Patch patch;
+        patch.polygon = patch.surface = front_patch;
+        patch.back = side == 1;
+        patch.normal = side == 0 ? normal : -normal;
+        const auto patch_id = std::uint32_t(m.patches.size());
+        m.patches.push_back(patch);
+        const auto base = std::uint32_t(m.vertex_count());
+        for (const Vec3& p : corners) {
+            m.positions.push_back(Vec3f(p));
+            m.vertex_patch.push_back(patch_id);
+        }
+        using Tri = std::array<std::uint32_t, 3>;
+        const std::array<Tri, 2> tris = side == 0 ? std::array<Tri, 2>{Tri{0, 1, 2}, Tri{0, 2, 3}}
+                                                  : std::array<Tri, 2>{Tri{0, 2, 1}, Tri{0, 3, 2}};
+        for (const Tri& t : tris) {
+            m.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+            m.element_patch.push_back(patch_id);
+            m.element_area.push_back(
+                0.5 * length(cross(corners[t[1]] - corners[t[0]], corners[t[2]] - corners[t[0]])));
+            m.element_twin.push_back(-1);
+        }
+    }
+    for (std::uint32_t k = 0; k < 2; ++k) {
+        m.geometry_elements.push_back(front_element + k);
+        if (two_sided) {
+            m.element_twin[front_element + k] = std::int32_t(front_element + 2 + k);
+            m.element_twin[front_element + 2 + k] = std::int32_t(front_element + k);
+        }
+    }
+    return front_patch;
+}
+
+/// Axis-aligned square in the plane z = height, x, y in [lo, hi], front facing +z or -z.
+std::uint32_t add_square(RadiosityMesh& m, double lo, double hi, double height, bool facing_up,
+                         bool two_sided) {
+    Vec3 a(lo, lo, height), b(hi, lo, height), c(hi, hi, height), d(lo, hi, height);
+    return facing_up ? add_quad(m, a, b, c, d, two_sided) : add_quad(m, a, d, c, b, two_sided);
+}
+
+/// Receiver at z = 0 (up), blocker x, y in [0.25, 0.75] at z = 1 (one-sided, facing up),
+/// source at z = 2 (down).
+RadiosityMesh blocker_scene() {
+    RadiosityMesh m;
+    add_square(m, 0, 1, 0, true, true);
+    add_square(m, 0.25, 0.75, 1, true, false);
+    add_square(m, 0, 1, 2, false, true);
+    return m;
+}
+
+Segment vertical_segment(float x, float y) {
+    // From the receiver (z = 0) to the source (z = 2), endpoints excluded.
+    return {Vec3f(x, y, 0), Vec3f(0, 0, 2), 1e-4f, 1 - 1e-4f};
+}
+
+Vec3 point_on(const RadiosityMesh& m, std::int32_t element, float u, float v) {
+    const auto& t = m.triangles[std::uint32_t(element)];
+    return m.vertex(t[0]) * (1.0 - u - v) + m.vertex(t[1]) * double(u) + m.vertex(t[2]) * double(v);
+}
+
+void expect_near(const Vec3& a, const Vec3& b, double tol) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+TEST(EmbreeScene, OccludedMatchesBlockerFootprint) {
+    RadiosityMesh mesh = blocker_scene();
+    EmbreeScene scene(mesh);
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> expected;
+    // More than one internal batch of 256 rays.
+    for (int i = 0; i < 30; ++i) {
+        for (int j = 0; j < 30; ++j) {
+            float x = (i + 0.37f) / 30, y = (j + 0.61f) / 30; // never on an edge
+            segments.push_back(vertical_segment(x, y));
+            expected.push_back(x > 0.25f && x < 0.75f && y > 0.25f && y < 0.75f);
+        }
+    }
+    std::vector<std::uint8_t> out(segments.size(), 7);
+    scene.occluded(segments, out);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        EXPECT_EQ(int(out[i]), int(expected[i])) << "segment " << i;
+    EXPECT_EQ(scene.rays_traced(), segments.size());
+}
+
+TEST(EmbreeScene, SegmentEndsBeforeBlocker) {
+    RadiosityMesh mesh = blocker_scene();
+    EmbreeScene scene(mesh);
+    const Segment segments[] = {
+        {Vec3f(0.5f, 0.5f, 0), Vec3f(0, 0, 1), 1e-4f, 0.9f},   // stops below the blocker
+        {Vec3f(0.5f, 0.5f, 0), Vec3f(0, 0, 1), 1e-4f, 1.1f},   // crosses it
+        {Vec3f(0.5f, 0.5f, 2), Vec3f(0, 0, -1), 1e-4f, 1.5f},  // crosses its back side
+        {Vec3f(0.5f, 0.5f, 0.5f), Vec3f(1, 0, 0), 0.0f, 10.f}, // parallel, between planes
+    };
+    std::uint8_t out[4] = {9, 9, 9, 9};
+    scene.occluded(segments, out);
+    EXPECT_EQ(out[0], 0);
+    EXPECT_EQ(out[1], 1);
+    EXPECT_EQ(out[2], 1);
+    EXPECT_EQ(out[3], 0);
+}
+
+TEST(EmbreeScene, RejectsMismatchedSpans) {
+    RadiosityMesh mesh = blocker_scene();
+    EmbreeScene scene(mesh);
+    std::vector<Segment> segments(3);
+    std::vector<std::uint8_t> out(2);
+    EXPECT_THROW(scene.occluded(segments, out), InternalError);
+}
+
+TEST(EmbreeScene, RejectsBrokenMesh) {
+    RadiosityMesh mesh = blocker_scene();
+    mesh.triangles[0][1] = 1000;
+    EXPECT_THROW(EmbreeScene scene(mesh), InternalError);
+}
+
+TEST(EmbreeScene, EmptyMeshOccludesNothing) {
+    RadiosityMesh mesh;
+    EmbreeScene scene(mesh);
+    std::vector<Segment> segments{vertical_segment(0.5f, 0.5f), vertical_segment(0.1f, 0.2f)};
+    std::vector<std::uint8_t> out(2, 1);
+    scene.occluded(segments, out);
+    EXPECT_EQ(out, (std::vector<std::uint8_t>{0, 0}));
+    auto hit = scene.intersect(Vec3f(0, 0, 1), Vec3f(0, 0, -1), 0, 10);
+    EXPECT_EQ(hit.element, -1);
+    EXPECT_FALSE(hit.back_of_one_sided);
+    EXPECT_EQ(scene.rays_traced(), 3u);
+}
+
+TEST(EmbreeScene, IntersectFrontAndBackOfTwoSidedSurface) {
+    RadiosityMesh mesh;
+    add_square(mesh, 0, 1, 0, true, true);
+    EmbreeScene scene(mesh);
+    const Vec3 target(0.3, 0.6, 0);
+
+    auto front = scene.intersect(Vec3f(0.3f, 0.6f, 1), Vec3f(0, 0, -1), 0, 10);
+    ASSERT_GE(front.element, 0);
+    EXPECT_FALSE(mesh.patch_of(std::uint32_t(front.element)).back);
+    EXPECT_NEAR(front.t, 1.0f, 1e-6f);
+    expect_near(point_on(mesh, front.element, front.u, front.v), target, 1e-6);
+
+    auto back = scene.intersect(Vec3f(0.3f, 0.6f, -2), Vec3f(0, 0, 1), 0, 10);
+    ASSERT_GE(back.element, 0);
+    EXPECT_TRUE(mesh.patch_of(std::uint32_t(back.element)).back);
+    EXPECT_EQ(back.element, mesh.element_twin[std::uint32_t(front.element)]);
+    EXPECT_NEAR(back.t, 2.0f, 1e-6f);
+    expect_near(point_on(mesh, back.element, back.u, back.v), target, 1e-6);
+    EXPECT_FALSE(back.back_of_one_sided);
+    EXPECT_EQ(scene.rays_traced(), 2u);
+}
+
+TEST(EmbreeScene, IntersectBackOfOneSidedSurfaceAndMiss) {
+    RadiosityMesh mesh;
+    add_square(mesh, 0, 1, 0, true, false);
+    EmbreeScene scene(mesh);
+
+    auto back = scene.intersect(Vec3f(0.5f, 0.5f, -1), Vec3f(0, 0, 1), 0, 10);
+    EXPECT_EQ(back.element, -1);
+    EXPECT_TRUE(back.back_of_one_sided);
+    EXPECT_NEAR(back.t, 1.0f, 1e-6f);
+
+    auto beyond = scene.intersect(Vec3f(0.5f, 0.5f, -1), Vec3f(0, 0, 1), 0, 0.5f);
+    EXPECT_EQ(beyond.element, -1);
+    EXPECT_FALSE(beyond.back_of_one_sided);
+
+    auto miss = scene.intersect(Vec3f(2, 2, 1), Vec3f(0, 0, -1), 0, 10);
+    EXPECT_EQ(miss.element, -1);
+    EXPECT_FALSE(miss.back_of_one_sided);
+}
+
+// ---- Rendering ------------------------------------------------------------------------------
+
+/// Camera on the z axis at distance 5 from the origin, looking at it, x to the right.
+Camera camera_on_axis(double z, int width, int height, int samples) {
+    Camera c;
+    c.eye = Vec3(0, 0, z);
+    c.look_at = Vec3(0, 0, 0);
+    c.up = Vec3(0, 1, 0);
+    c.fov_deg = 40;
+    c.width = width;
+    c.height = height;
+    c.samples_per_pixel = samples;
+    return c;
+}
+
+/// Vertex radiosity from a function of position, per side (front patches, back patches).
+std::vector<Rgb> vertex_field(const RadiosityMesh& m, const std::function<Rgb(Vec3, bool)>& f) {
+    std::vector<Rgb> values;
+    for (std::size_t v = 0; v < m.vertex_count(); ++v)
+        values.push_back(f(m.vertex(std::uint32_t(v)), m.patches[m.vertex_patch[v]].back));
+    return values;
+}
+
+/// World-space extent, on the plane z = 0, of pixel column x (or row, with y flipped).
+std::pair<double, double> footprint(const Camera& c, int pixel, int count, bool vertical) {
+    const double half = std::tan(c.fov_deg * k_pi / 360.0) * std::abs(c.eye.z);
+    const double scale = vertical ? half * c.height / c.width : half;
+    double lo = (2.0 * pixel / count - 1.0) * scale, hi = (2.0 * (pixel + 1) / count - 1.0) * scale;
+    return vertical ? std::pair(-hi, -lo) : std::pair(lo, hi);
+}
+
+TEST(Render, ConstantRadiosityGivesExactlyBOverPi) {
+    RadiosityMesh mesh;
+    add_square(mesh, -1, 1, 0, true, true);
+    EmbreeScene scene(mesh);
+    const Rgb b(2.0f, 1.0f, 0.3f);
+    Solution solution;
+    solution.vertex_radiosity = vertex_field(mesh, [&](Vec3, bool) { return b; });
+    const Camera camera = camera_on_axis(5, 24, 16, 5);
+    Image image = render_solution(scene, solution, camera, test::quiet_context(2));
+
+    const Rgb expected(float(double(b.r) * k_inv_pi), float(double(b.g) * k_inv_pi),
+                       float(double(b.b) * k_inv_pi));
+    int inside = 0, outside = 0;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            auto [x0, x1] = footprint(camera, x, camera.width, false);
+            auto [y0, y1] = footprint(camera, y, camera.height, true);
+            const Rgb& p = image.at(x, y);
+            if (x0 > -1 && x1 < 1 && y0 > -1 && y1 < 1) {
+                EXPECT_EQ(p, expected) << "pixel " << x << "," << y;
+                ++inside;
+            } else if (x1 < -1 || x0 > 1 || y1 < -1 || y0 > 1) {
+                EXPECT_EQ(p, Rgb()) << "pixel " << x << "," << y;
+                ++outside;
+            } else {
+                EXPECT_LE(p.r, expected.r);
+            }
+        }
+    }
+    EXPECT_GT(inside, 20);
+    EXPECT_GT(outside, 20);
+    // 5 samples per pixel round up to 3 × 3.
+    EXPECT_EQ(scene.rays_traced(), std::uint64_t(24 * 16 * 9));
+}
+
+TEST(Render, InterpolatesLinearFieldOnBothSides) {
+    RadiosityMesh mesh;
+    add_square(mesh, -1, 1, 0, true, true);
+    add_square(mesh, 3, 4, 0, true, false); // one-sided, out of view
+    EmbreeScene scene(mesh);
+    Solution solution;
+    solution.vertex_radiosity = vertex_field(
+        mesh, [](Vec3 p, bool back) { return back ? Rgb(float(3 + p.y)) : Rgb(float(2 + p.x)); });
+    for (double z : {5.0, -5.0}) {
+        const Camera camera = camera_on_axis(z, 32, 32, 16);
+        Image image = render_solution(scene, solution, camera, test::quiet_context(2));
+        for (int y = 8; y < 24; y += 3) {
+            for (int x = 8; x < 24; x += 3) {
+                auto [x0, x1] = footprint(camera, x, camera.width, false);
+                auto [y0, y1] = footprint(camera, y, camera.height, true);
+                // Looking up from below, the image's x axis is the world's -x axis.
+                double wx = z > 0 ? 0.5 * (x0 + x1) : -0.5 * (x0 + x1);
+                double want = z > 0 ? 2 + wx : 3 + 0.5 * (y0 + y1);
+                EXPECT_NEAR(image.at(x, y).g, want * k_inv_pi, 0.02) << x << "," << y << " " << z;
+            }
+        }
+    }
+}
+
+TEST(Render, BackOfOneSidedSurfaceIsBlack) {
+    RadiosityMesh mesh;
+    add_square(mesh, -1, 1, 0, true, false);
+    EmbreeScene scene(mesh);
+    Solution solution;
+    solution.vertex_radiosity.assign(mesh.vertex_count(), Rgb(1.0f));
+    Image above =
+        render_solution(scene, solution, camera_on_axis(5, 8, 8, 1), test::quiet_context(1));
+    Image below =
+        render_solution(scene, solution, camera_on_axis(-5, 8, 8, 1), test::quiet_context(1));
+    EXPECT_GT(above.at(4, 4).r, 0.0f);
+    for (const Rgb& p : below.pixels)
+        EXPECT_EQ(p, Rgb());
+}
+
+TEST(Render, BitwiseIdenticalForAnyThreadCount) {
+    RadiosityMesh mesh;
+    add_square(mesh, -1, 1, 0, true, true);
+    add_quad(mesh, Vec3(-0.5, -0.5, 0.5), Vec3(0.7, -0.2, 0.8), Vec3(0.4, 0.6, 0.3),
+             Vec3(-0.4, 0.5, 0.6), true);
+    EmbreeScene scene(mesh);
+    Solution solution;
+    solution.vertex_radiosity = vertex_field(mesh, [](Vec3 p, bool back) {
+        return Rgb(float(1 + p.x * p.x), float(2 + p.y), back ? 0.5f : float(1 + p.z));
+    });
+    Camera camera = camera_on_axis(4, 37, 23, 7);
+    camera.fov_axis_x = false;
+    Context one = test::quiet_context(1), four = test::quiet_context(4);
+    one.seed = four.seed = 1234;
+    Image a = render_solution(scene, solution, camera, one);
+    Image b = render_solution(scene, solution, camera, four);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    EXPECT_EQ(std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)), 0);
+
+    four.seed = 99; // another seed moves the jitter, so edge pixels change
+    Image c = render_solution(scene, solution, camera, four);
+    EXPECT_NE(std::memcmp(a.pixels.data(), c.pixels.data(), a.pixels.size() * sizeof(Rgb)), 0);
+}
+
+class RecordingProgress final : public ProgressSink {
+public:
+    void begin(std::string_view stage) override { stages.emplace_back(stage); }
+    bool update(double fraction) override {
+        fractions.push_back(fraction);
+        return fractions.size() < cancel_after;
+    }
+    void end() override { ++ended; }
+
+    std::vector<std::string> stages;
+    std::vector<double> fractions;
+    std::size_t cancel_after = 1000000;
+    int ended = 0;
+};
+
+TEST(Render, ReportsProgressAndHonoursCancel) {
+    RadiosityMesh mesh;
+    add_square(mesh, -1, 1, 0, true, true);
+    EmbreeScene scene(mesh);
+    Solution solution;
+    solution.vertex_radiosity.assign(mesh.vertex_count(), Rgb(1.0f));
+    Context ctx = test::quiet_context(2);
+    auto progress = std::make_shared<RecordingProgress>();
+    ctx.progress = progress;
+    render_solution(scene, solution, camera_on_axis(5, 16, 64, 1), ctx);
+    ASSERT_EQ(progress->stages, std::vector<std::string>{"render"});
+    ASSERT_FALSE(progress->fractions.empty());
+    EXPECT_TRUE(std::is_sorted(progress->fractions.begin(), progress->fractions.end()));
+    EXPECT_EQ(progress->fractions.back(), 1.0);
+    EXPECT_EQ(progress->ended, 1);
+
+    progress->cancel_after = 1;
+    progress->fractions.clear();
+    EXPECT_THROW(render_solution(scene, solution, camera_on_axis(5, 16, 64, 1), ctx), Cancelled);
+    EXPECT_EQ(progress->ended, 2);
+}
+
+TEST(Render, RejectsBadCameraAndSolution) {
+    RadiosityMesh mesh;
+    add_square(mesh, -1, 1, 0, true, true);
+    EmbreeScene scene(mesh);
+    Solution solution;
+    solution.vertex_radiosity.assign(mesh.vertex_count(), Rgb(1.0f));
+    Context ctx = test::quiet_context(1);
+    Camera camera = camera_on_axis(5, 8, 8, 1);
+    camera.up = Vec3(0, 0, 1); // parallel to the view direction
+    EXPECT_THROW(render_solution(scene, solution, camera, ctx), ConfigError);
+    camera = camera_on_axis(5, 0, 8, 1);
+    EXPECT_THROW(render_solution(scene, solution, camera, ctx), ConfigError);
+    solution.vertex_radiosity.pop_back();
+    EXPECT_THROW(render_solution(scene, solution, camera_on_axis(5, 8, 8, 1), ctx), InternalError);
+}
+
+} // namespace
+} // namespace penumbra::raytrace

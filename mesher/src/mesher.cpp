@@ -68,6 +68,7 @@ std::size_t append_patch(RadiosityMesh& mesh, const SurfaceMesh& sm, const Patch
         mesh.element_patch.push_back(patch_id);
         mesh.element_twin.push_back(-1);
         mesh.element_area.push_back(triangle_area(mesh, tri));
+        mesh.element_level.push_back(0);
     }
     return first;
 }

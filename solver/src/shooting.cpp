@@ -113,9 +113,10 @@ struct LoopResult {
     std::vector<double> history;
 };
 
-LoopResult shooting_loop(ShootingState& s, const ElementGeometry& geo,
+LoopResult shooting_loop(ShootingState& s, const RadiosityMesh& mesh, const ElementGeometry& geo,
                          const VisibilityQuery& vis, const SolverSettings& settings,
-                         const RowSettings& row_settings, const Context& ctx) {
+                         const RowSettings& row_settings, const SolveObserver* observer,
+                         const Context& ctx) {
     const double emitted = s.emitted.sum();
     const std::int64_t max_shots =
         settings.max_shots > 0 ? settings.max_shots : 10000 * std::int64_t(geo.size()) + 100;
@@ -134,6 +135,10 @@ LoopResult shooting_loop(ShootingState& s, const ElementGeometry& geo,
             unshot = total_unshot(s, geo); // drop accumulated rounding
             result.history.push_back(unshot / std::max(emitted, 1e-300));
         }
+        if (observer && observer->on_pass && observer->every_shots > 0 &&
+            result.shots % observer->every_shots == 0)
+            observer->on_pass(snapshot_solution(mesh, s), result.shots,
+                              unshot / std::max(emitted, 1e-300), false);
         progress.update(std::log(start / std::max(unshot, 1e-300)) /
                         std::log(start / std::max(target, 1e-300)));
     }
@@ -193,7 +198,7 @@ double PowerBalance::relative_imbalance() const {
 
 Solution solve_shooting(const Scene& scene, const RadiosityMesh& mesh,
                         const VisibilityQuery& visibility, const Context& ctx,
-                        SolveStats* stats) {
+                        SolveStats* stats, const SolveObserver* observer) {
     using clock = std::chrono::steady_clock;
     const auto t0 = clock::now();
     const std::uint64_t rays0 = visibility.rays_traced();
@@ -204,11 +209,16 @@ Solution solve_shooting(const Scene& scene, const RadiosityMesh& mesh,
         row_settings.visibility_rays = scene.solver.visibility_rays;
         row_settings.seed = ctx.seed;
         shoot_point_lights(state, geo, scene.point_lights, visibility, row_settings, ctx);
-        LoopResult loop = shooting_loop(state, geo, visibility, scene.solver, row_settings, ctx);
+        LoopResult loop = shooting_loop(state, mesh, geo, visibility, scene.solver, row_settings,
+                                        observer, ctx);
         PowerBalance balance = balance_of(state, geo);
         if (scene.solver.ambient)
             add_ambient(state, geo);
         Solution solution = make_solution(scene, mesh, geo, state, visibility, row_settings, ctx);
+        if (observer && observer->on_pass)
+            observer->on_pass(solution, loop.shots,
+                              balance.residual.sum() / std::max(balance.emitted.sum(), 1e-300),
+                              true);
         ctx.info("solve: {} shots, unshot {:.3g} of emitted, power imbalance {:.3g}", loop.shots,
                  balance.residual.sum() / std::max(balance.emitted.sum(), 1e-300),
                  balance.relative_imbalance());

@@ -36,6 +36,17 @@ std::vector<Rgb> area_weighted_vertex_mean(const RadiosityMesh& mesh,
 
 } // namespace
 
+Solution snapshot_solution(const RadiosityMesh& mesh, const ShootingState& state) {
+    Solution sol;
+    sol.radiosity = state.radiosity;
+    sol.irradiance_direct = state.h_direct;
+    sol.irradiance_indirect = state.h_indirect;
+    sol.vertex_radiosity = area_weighted_vertex_mean(mesh, state.radiosity);
+    sol.vertex_irradiance_direct = area_weighted_vertex_mean(mesh, state.h_direct);
+    sol.vertex_irradiance_indirect = area_weighted_vertex_mean(mesh, state.h_indirect);
+    return sol;
+}
+
 Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const ElementGeometry& geo,
                        const ShootingState& state, const VisibilityQuery& visibility,
                        const RowSettings& settings, const Context& ctx) {

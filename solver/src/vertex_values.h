@@ -13,6 +13,10 @@ namespace penumbra::solver {
 /// The sources a point can gather direct light from: emitting elements and point lights.
 GatherSources direct_sources(const Scene& scene, const std::vector<Rgb>& element_emission);
 
+/// \brief A cheap snapshot for progress: element values, and vertex values as area-weighted
+///        means of the elements around each vertex.
+Solution snapshot_solution(const RadiosityMesh& mesh, const ShootingState& state);
+
 /// \brief Packs element results and reconstructs vertex values: direct irradiance gathered at
 ///        each vertex itself (Wallace et al. 1989's vertex receivers), indirect as the
 ///        area-weighted mean of the vertex's elements, B = E + ρ H.

@@ -25,6 +25,15 @@ struct Patch {
     Rgb emission;               ///< emitted radiosity πL of this side, W/m²
 };
 
+/// \brief A discontinuity in the illumination (a shadow boundary) that the mesher inserted
+///        as element edges (issue #5). order: 0 = D0 (value), 1 = D1 (gradient), 2 = D2.
+struct DiscontinuitySegment {
+    Vec3 a, b;                  ///< endpoints, metres
+    std::uint32_t surface = 0;  ///< the receiving planar surface
+    std::int32_t source = -1;   ///< the emitting polygon (index into Scene::polygons), -1 = sun
+    int order = 0;
+};
+
 /// \brief Conforming triangle mesh of all patches. An element is one triangle of one patch,
 ///        wound counter-clockwise when seen from the side it belongs to.
 struct RadiosityMesh {
@@ -34,10 +43,13 @@ struct RadiosityMesh {
     std::vector<std::uint32_t> element_patch;            ///< per element
     std::vector<std::int32_t> element_twin;              ///< the other side's element or -1
     std::vector<double> element_area;                    ///< per element, m²
+    std::vector<std::int32_t> element_level;             ///< hierarchy level, 0 = mesh triangle
     std::vector<Patch> patches;
     /// Elements that carry geometry for ray tracing (front or one-sided), in primitive order.
     std::vector<std::uint32_t> geometry_elements;
     double scene_diagonal = 0; ///< metres
+    /// Shadow boundaries inserted as element edges (empty without discontinuity meshing).
+    std::vector<DiscontinuitySegment> discontinuities;
 
     std::size_t element_count() const { return triangles.size(); }
     std::size_t vertex_count() const { return positions.size(); }
@@ -54,6 +66,14 @@ struct Solution {
     std::vector<Rgb> vertex_radiosity;
     std::vector<Rgb> vertex_irradiance_direct;
     std::vector<Rgb> vertex_irradiance_indirect;
+};
+
+/// \brief Irradiance at a sensor point, computed at the point itself.
+struct SensorReading {
+    Rgb irradiance_direct; ///< W/m²
+    Rgb irradiance_total;  ///< W/m²
+    double illuminance_direct_lx = 0;
+    double illuminance_total_lx = 0;
 };
 
 /// \brief Linear interpolation of per-vertex \p values at \p point on the patch side whose

@@ -3,6 +3,7 @@
 // iteration) with analytic polygon form factors times ray-traced visibility.
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/context.h"
@@ -32,19 +33,24 @@ struct SolveStats {
     std::vector<double> residual_history; ///< relative unshot power after every N shots (N = elements)
 };
 
+/// \brief Watches a progressive solve: called with a snapshot every \p every_shots shots and
+///        once at the end (final = true, the full solution). Snapshots carry element values and
+///        vertex values averaged from the elements (no vertex gathering).
+struct SolveObserver {
+    std::int64_t every_shots = 0; ///< 0 = only the final call
+    std::function<void(const Solution& snapshot, std::int64_t shots, double relative_unshot,
+                       bool final)>
+        on_pass;
+};
+
 /// \brief Solves the radiosity of \p mesh by progressive shooting until the unshot power falls
 ///        below SolverSettings::residual of the emitted power.
 ///        Deterministic: the result does not depend on ctx.threads.
 Solution solve_shooting(const Scene& scene, const RadiosityMesh& mesh,
                         const VisibilityQuery& visibility, const Context& ctx,
-                        SolveStats* stats = nullptr);
+                        SolveStats* stats = nullptr, const SolveObserver* observer = nullptr);
 
-struct SensorReading {
-    Rgb irradiance_direct;   ///< W/m²
-    Rgb irradiance_total;    ///< W/m²
-    double illuminance_direct_lx = 0;
-    double illuminance_total_lx = 0;
-};
+using penumbra::SensorReading;
 
 /// \brief Irradiance at each sensor, gathered at the point itself from the sources (direct)
 ///        and from every element's radiosity (indirect), with analytic form factors and

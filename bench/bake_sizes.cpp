@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
     for (int i = 2; i < argc; ++i)
         edges.push_back(std::stod(argv[i]));
     if (edges.empty())
-        edges = {0.10, 0.05, 0.025};
+        edges = {0.10, 0.05, 0.04};
     try {
         const Scene base = load_scene(path);
         std::printf("%-8s %9s %12s %8s %8s %8s %8s %8s %10s %10s %10s %10s\n", "edge_m",

@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
-if [ $# -eq 0 ]; then set -- 0.10 0.05 0.025; fi
+if [ $# -eq 0 ]; then set -- 0.10 0.05 0.04; fi
 build/bench/bake_sizes data/cornell/scene.json "$@"

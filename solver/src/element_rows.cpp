@@ -1,4 +1,5 @@
-// Rows of element-to-element form factors by shooter-side quadrature (see element_rows.h).
+// Element-to-element form factors (see element_rows.h): quadrature on one triangle of the
+// analytic point-to-triangle form factor toward the other, times visibility from rays.
 
 #include "element_rows.h"
 
@@ -22,15 +23,19 @@ ElementGeometry::ElementGeometry(const RadiosityMesh& mesh) {
         triangle[e] = {mesh.vertex(t[0]), mesh.vertex(t[1]), mesh.vertex(t[2])};
         normal[e] = mesh.patch_of(std::uint32_t(e)).normal;
         area[e] = mesh.element_area[e];
+        emitter.push_back(mesh.patch_of(std::uint32_t(e)).emission.is_black() ? 0 : 1);
     }
     diagonal = mesh.scene_diagonal;
     offset = 1e-5 * std::max(diagonal, 1e-3);
 }
 
 bool ElementGeometry::in_front_of(std::uint32_t e, std::uint32_t f) const {
-    const double eps = 1e-9 * diagonal;
-    for (const Vec3& v : triangle[e])
-        if (dot(v - triangle[f][0], normal[f]) > eps)
+    return in_front(oriented(e), oriented(f), 1e-9 * diagonal);
+}
+
+bool in_front(const OrientedTriangle& a, const OrientedTriangle& b, double eps) {
+    for (const Vec3& v : a.v)
+        if (dot(v - b.v[0], b.n) > eps)
             return true;
     return false;
 }
@@ -51,26 +56,42 @@ Quadrature make_quadrature(const std::array<Vec3, 3>& t, int level) {
     return q;
 }
 
-Segment segment_between(const Vec3& from, const Vec3& to) {
-    return {Vec3f(from), Vec3f(to - from), 0.0f, 1.0f};
+double longest_edge(const std::array<Vec3, 3>& t) {
+    return std::max({length(t[1] - t[0]), length(t[2] - t[1]), length(t[0] - t[2])});
 }
 
-// Casts \p per_point rays from each active quadrature point to random points of j; adds the
+using PointValues = std::array<double, k_max_quadrature_points>;
+
+// Point form factors toward b of the quadrature points (0 where a point lies behind b's
+// plane); returns their mean.
+double point_form_factors(const Quadrature& quad, const OrientedTriangle& a,
+                          const OrientedTriangle& b, PointValues& f_point) {
+    double sum = 0;
+    for (std::size_t q = 0; q < quad.count; ++q) {
+        f_point[q] = 0;
+        if (dot(quad.point[q] - b.v[0], b.n) <= 0)
+            continue; // this part of a lies behind b's plane
+        f_point[q] = form_factor_point_triangle(quad.point[q], a.n, b.v);
+        sum += f_point[q];
+    }
+    return sum / double(quad.count);
+}
+
+// Casts \p per_point rays from each active quadrature point to random points of b; adds the
 // open ones to open[q].
-void cast_pair_rays(const ElementGeometry& geo, const VisibilityQuery& visibility,
-                    const Quadrature& quad, const std::array<double, k_max_quadrature_points>& f,
-                    std::uint32_t i, std::uint32_t j, int per_point, Pcg32& rng,
+void cast_pair_rays(const Quadrature& quad, const PointValues& f, const OrientedTriangle& a,
+                    const OrientedTriangle& b, double offset, int per_point,
+                    const VisibilityQuery& visibility, Pcg32& rng,
                     std::array<int, k_max_quadrature_points>& open) {
     std::vector<Segment> segments;
     segments.reserve(quad.count * std::size_t(per_point));
     for (std::size_t q = 0; q < quad.count; ++q) {
         if (f[q] <= 0)
             continue;
-        Vec3 from = quad.point[q] + geo.normal[i] * geo.offset;
+        Vec3 from = quad.point[q] + a.n * offset;
         for (int r = 0; r < per_point; ++r) {
-            Vec3 to = sample_triangle(geo.triangle[j], rng.next_double(), rng.next_double()) +
-                      geo.normal[j] * geo.offset;
-            segments.push_back(segment_between(from, to));
+            Vec3 to = sample_triangle(b.v, rng.next_double(), rng.next_double()) + b.n * offset;
+            segments.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
         }
     }
     std::vector<std::uint8_t> blocked(segments.size());
@@ -84,45 +105,35 @@ void cast_pair_rays(const ElementGeometry& geo, const VisibilityQuery& visibilit
     }
 }
 
-// Unoccluded point-to-triangle form factors of the quadrature points toward j (0 where a
-// point lies behind j's plane); returns their mean, F_ij without occlusion.
-double unoccluded_form_factor(const ElementGeometry& geo, const Quadrature& quad,
-                              std::uint32_t i, std::uint32_t j,
-                              std::array<double, k_max_quadrature_points>& f_point) {
-    const auto& tj = geo.triangle[j];
-    double sum = 0;
-    for (std::size_t q = 0; q < quad.count; ++q) {
-        f_point[q] = 0;
-        if (dot(quad.point[q] - tj[0], geo.normal[j]) <= 0)
-            continue; // this part of the shooter lies behind the receiver's plane
-        f_point[q] = form_factor_point_triangle(quad.point[q], geo.normal[i], tj);
-        sum += f_point[q];
-    }
-    return sum / double(quad.count);
+} // namespace
+
+bool is_near(const OrientedTriangle& a, const OrientedTriangle& b) {
+    const Vec3 ca = (a.v[0] + a.v[1] + a.v[2]) / 3.0, cb = (b.v[0] + b.v[1] + b.v[2]) / 3.0;
+    return length(cb - ca) < k_near_factor * (longest_edge(a.v) + longest_edge(b.v));
 }
 
-struct PairFormFactor {
-    double f = 0;             ///< with visibility
-    double f_unoccluded = 0;  ///< without
-};
+double triangle_form_factor_unoccluded(const OrientedTriangle& a, const OrientedTriangle& b,
+                                       int level) {
+    PointValues f_point{};
+    return point_form_factors(make_quadrature(a.v, level), a, b, f_point);
+}
 
-// F_ij for one receiver: quadrature over the shooter, visibility per quadrature point. One
-// probe ray per point first; only where the probes disagree (a penumbra) are the remaining
-// rays cast, so that fully visible and fully hidden pairs cost one ray per point.
-PairFormFactor pair_form_factor(const ElementGeometry& geo, const VisibilityQuery& visibility,
-                                const Quadrature& quad, std::uint32_t i, std::uint32_t j,
-                                const RowSettings& settings) {
-    std::array<double, k_max_quadrature_points> f_point{};
+PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTriangle& b,
+                                    int level, const VisibilityQuery& visibility, double offset,
+                                    std::uint64_t key_a, std::uint64_t key_b,
+                                    const RowSettings& settings) {
+    const Quadrature quad = make_quadrature(a.v, level);
+    PointValues f_point{};
     PairFormFactor result;
-    result.f_unoccluded = unoccluded_form_factor(geo, quad, i, j, f_point);
+    result.f_unoccluded = point_form_factors(quad, a, b, f_point);
     if (result.f_unoccluded <= 0)
         return result;
-    std::size_t active = 0;
-    for (std::size_t q = 0; q < quad.count; ++q)
-        active += f_point[q] > 0 ? 1 : 0;
-    Pcg32 rng = Pcg32::for_stream(RngPurpose::form_factor_visibility, i, j, 0, settings.seed);
+    const auto active = std::size_t(std::count_if(f_point.begin(), f_point.begin() + quad.count,
+                                                  [](double f) { return f > 0; }));
+    Pcg32 rng = Pcg32::for_stream(RngPurpose::form_factor_visibility, key_a, key_b, 0,
+                                  settings.seed);
     std::array<int, k_max_quadrature_points> open{};
-    cast_pair_rays(geo, visibility, quad, f_point, i, j, 1, rng, open);
+    cast_pair_rays(quad, f_point, a, b, offset, 1, visibility, rng, open);
     int open_probes = 0;
     for (std::size_t q = 0; q < quad.count; ++q)
         open_probes += open[q];
@@ -132,22 +143,27 @@ PairFormFactor pair_form_factor(const ElementGeometry& geo, const VisibilityQuer
     }
     if (open_probes == 0)
         return result;
+    result.partial = true;
     const int per_point =
         std::max(1, int(std::ceil(double(settings.visibility_rays) / double(quad.count))));
     if (per_point > 1)
-        cast_pair_rays(geo, visibility, quad, f_point, i, j, per_point - 1, rng, open);
+        cast_pair_rays(quad, f_point, a, b, offset, per_point - 1, visibility, rng, open);
     for (std::size_t q = 0; q < quad.count; ++q)
         result.f += f_point[q] * double(open[q]) / per_point;
     result.f /= double(quad.count);
     return result;
 }
 
+namespace {
+
 double escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
-                       const Quadrature& quad, std::uint32_t i, const RowSettings& settings) {
-    if (settings.escape_rays <= 0)
+                       std::uint32_t i, const RowSettings& settings) {
+    const int rays = geo.emitter[i] ? settings.escape_rays_emitter : settings.escape_rays;
+    if (rays <= 0)
         return 0;
+    const Quadrature quad = make_quadrature(geo.triangle[i], settings.quadrature_level);
     Pcg32 rng = Pcg32::for_stream(RngPurpose::escape_estimate, i, 0, 0, settings.seed);
-    std::vector<Segment> segments(std::size_t(settings.escape_rays));
+    auto segments = std::vector<Segment>(std::size_t(rays));
     const float reach = float(4.0 * geo.diagonal + 1.0);
     for (std::size_t r = 0; r < segments.size(); ++r) {
         Vec3 from = quad.point[r % quad.count] + geo.normal[i] * geo.offset;
@@ -159,19 +175,6 @@ double escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibi
     auto misses = std::count(blocked.begin(), blocked.end(), std::uint8_t(0));
     return double(misses) / double(segments.size());
 }
-
-
-
-double longest_edge(const std::array<Vec3, 3>& t) {
-    return std::max({length(t[1] - t[0]), length(t[2] - t[1]), length(t[0] - t[2])});
-}
-
-// Pairs closer than this many element sizes use the fine rule: there F(x → j) varies fast
-// over the shooter (log-singular next to a shared edge) and the coarse rule would break
-// reciprocity A_i F_ij = A_j F_ji. Far pairs keep the coarse rule, whose error falls as
-// (size / distance)².
-constexpr double k_near_factor = 2.0;
-
 
 // Both rules satisfy Σ_j F(x → j) = 1 at each of their points in a closed unoccluded scene,
 // so the far receivers' true sum is the coarse total minus the near receivers' fine values.
@@ -200,10 +203,7 @@ void rescale_far_pairs(std::vector<float>& dense, const std::vector<std::uint8_t
 
 Row compute_row(const ElementGeometry& geo, const VisibilityQuery& visibility, std::uint32_t i,
                 const RowSettings& settings) {
-    const Quadrature coarse = make_quadrature(geo.triangle[i], settings.quadrature_level);
-    const Quadrature fine = make_quadrature(geo.triangle[i], settings.near_quadrature_level);
-    const Vec3 centroid_i = (geo.triangle[i][0] + geo.triangle[i][1] + geo.triangle[i][2]) / 3.0;
-    const double size_i = longest_edge(geo.triangle[i]);
+    const OrientedTriangle ti = geo.oriented(i);
     const std::size_t n = geo.size();
     std::vector<float> dense(n, 0.0f);
     std::vector<std::uint8_t> near(n, 0);
@@ -214,17 +214,15 @@ Row compute_row(const ElementGeometry& geo, const VisibilityQuery& visibility, s
             return;
         if (!geo.in_front_of(jj, i) || !geo.in_front_of(i, jj))
             return;
-        const auto& tj = geo.triangle[j];
-        const double distance = length((tj[0] + tj[1] + tj[2]) / 3.0 - centroid_i);
-        near[j] = distance < k_near_factor * (size_i + longest_edge(tj));
-        PairFormFactor pf = pair_form_factor(geo, visibility, near[j] ? fine : coarse, i, jj,
-                                             settings);
+        const OrientedTriangle tj = geo.oriented(jj);
+        near[j] = is_near(ti, tj);
+        const int level = near[j] ? settings.near_quadrature_level : settings.quadrature_level;
+        PairFormFactor pf =
+            triangle_form_factor(ti, tj, level, visibility, geo.offset, i, jj, settings);
         dense[j] = float(pf.f);
-        if (near[j] && pf.f_unoccluded > 0) {
-            std::array<double, k_max_quadrature_points> scratch{};
-            near_coarse[j] = unoccluded_form_factor(geo, coarse, i, jj, scratch) *
+        if (near[j] && pf.f_unoccluded > 0)
+            near_coarse[j] = triangle_form_factor_unoccluded(ti, tj, settings.quadrature_level) *
                              (pf.f / pf.f_unoccluded);
-        }
     });
     rescale_far_pairs(dense, near, near_coarse);
     Row row;
@@ -234,7 +232,7 @@ Row compute_row(const ElementGeometry& geo, const VisibilityQuery& visibility, s
             row.form_factor.push_back(dense[j]);
         }
     }
-    row.escape = escape_fraction(geo, visibility, coarse, i, settings);
+    row.escape = escape_fraction(geo, visibility, i, settings);
     return row;
 }
 

@@ -10,12 +10,19 @@
 
 namespace penumbra::solver {
 
+/// A triangle with the unit normal of the side it belongs to.
+struct OrientedTriangle {
+    std::array<Vec3, 3> v;
+    Vec3 n;
+};
+
 /// Per-element geometry in double precision, precomputed once.
 struct ElementGeometry {
     std::vector<std::array<Vec3, 3>> triangle;
     std::vector<Vec3> normal;
     std::vector<double> area;
     std::vector<std::int32_t> twin;
+    std::vector<std::uint8_t> emitter; ///< the element emits light
     double offset = 0; ///< ray-origin offset along normals, metres
     double diagonal = 0;
 
@@ -23,6 +30,7 @@ struct ElementGeometry {
     std::size_t size() const { return area.size(); }
     /// True if any vertex of element \p e lies strictly in front of element \p f's plane.
     bool in_front_of(std::uint32_t e, std::uint32_t f) const;
+    OrientedTriangle oriented(std::uint32_t e) const { return {triangle[e], normal[e]}; }
 };
 
 struct RowSettings {
@@ -30,8 +38,38 @@ struct RowSettings {
     int near_quadrature_level = 3; ///< for receivers within about two element sizes
     int visibility_rays = 16; ///< per receiver, spread over the quadrature points
     int escape_rays = 64;     ///< cosine rays per shooter that estimate the escaping fraction
+    int escape_rays_emitter = 4096; ///< the same for emitters, which carry the direct power
     std::uint64_t seed = 0;
 };
+
+struct PairFormFactor {
+    double f = 0;            ///< with visibility
+    double f_unoccluded = 0; ///< without
+    bool partial = false;    ///< the visibility rays disagreed (a penumbra)
+};
+
+/// \brief F_ab = (1/A_a) ∫_a F(x → b) V(x, b) dx by the equal-weight rule of \p level on a,
+///        analytic point-to-triangle F, and visibility rays from a stream keyed by
+///        (key_a, key_b, seed): one probe per point, the full \p visibility_rays only where
+///        the probes disagree. The caller checks that a and b face each other.
+PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTriangle& b,
+                                    int level, const VisibilityQuery& visibility, double offset,
+                                    std::uint64_t key_a, std::uint64_t key_b,
+                                    const RowSettings& settings);
+
+/// Unoccluded F_ab by the rule of \p level (no rays).
+double triangle_form_factor_unoccluded(const OrientedTriangle& a, const OrientedTriangle& b,
+                                       int level);
+
+/// True if any vertex of \p a lies in front of \p b's plane by more than \p eps.
+bool in_front(const OrientedTriangle& a, const OrientedTriangle& b, double eps);
+
+/// Pairs closer than this many element sizes need the fine rule: there F(x → b) varies fast
+/// over a (log-singular next to a shared edge) and the coarse rule breaks reciprocity.
+inline constexpr double k_near_factor = 2.0;
+
+/// True if a and b are near in the sense of k_near_factor.
+bool is_near(const OrientedTriangle& a, const OrientedTriangle& b);
 
 /// Non-zero form factors F_ij of shooter i, receivers in increasing order.
 struct Row {

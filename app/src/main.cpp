@@ -42,6 +42,7 @@ struct BakeFlags {
     double max_edge_m = 0;
     double residual = 0;
     bool no_render = false;
+    std::int64_t series_every_shots = 0;
 };
 
 Context make_context(const CommonFlags& flags) {
@@ -73,6 +74,8 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
     check_output_dir(flags.output);
     app::BakeOptions options;
     options.render = !flags.no_render;
+    options.series_every_shots = flags.series_every_shots;
+    options.series_dir = flags.output;
     app::BakeResult result = app::bake(scene, options, ctx);
     app::write_outputs(flags.output, scene, result);
     const auto& pb = result.stats.power;
@@ -81,6 +84,13 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
              flags.output, result.mesh.element_count(), result.rays, to_photometric(pb.emitted),
              to_photometric(pb.absorbed), to_photometric(pb.escaped),
              to_photometric(pb.residual));
+    return k_ok;
+}
+
+int run_view(const app::ViewRequest& request, const CommonFlags& common) {
+    Context ctx = make_context(common);
+    ctx.progress = nullptr;
+    app::view(request, ctx);
     return k_ok;
 }
 
@@ -101,7 +111,7 @@ int report(const char* kind, const std::string& message, int code) {
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App cli{"Penumbra: radiosity-first lighting (mesh, solve, render, sensors)"};
+    CLI::App cli{"Penumbra: radiosity-first lighting (mesh, solve, render, sensors, view)"};
     cli.require_subcommand(1);
     CommonFlags common;
     BakeFlags bake;
@@ -116,11 +126,34 @@ int main(int argc, char** argv) {
                          "stop when unshot power / emitted power falls below this")
         ->check(CLI::Range(1e-12, 0.999999));
     bake_cmd->add_flag("--no-render", bake.no_render, "skip the camera render");
+    bake_cmd->add_option("--series", bake.series_every_shots,
+                         "write the solution every K shots as series/mesh_*.vtu + series.pvd")
+        ->check(CLI::PositiveNumber);
     add_common_flags(*bake_cmd, common);
     std::string validate_scene_path;
     auto* validate_cmd = cli.add_subcommand("validate", "load and check a scene, write nothing");
     validate_cmd->add_option("scene", validate_scene_path, "scene file")->required();
     add_common_flags(*validate_cmd, common);
+    app::ViewRequest view;
+    auto* view_cmd = cli.add_subcommand(
+        "view", "show a bake's mesh.vtu or series.pvd in a window, or render it to a PNG");
+    view_cmd->add_option("input", view.input,
+                         "output folder (series.pvd, else mesh.vtu) or .vtu/.vtp/.pvd file")
+        ->required();
+    view_cmd->add_option("--png", view.png, "render off-screen to this PNG file, no window");
+    view_cmd->add_option("--size", view.size, "picture size WxH (default: the scene camera's)");
+    view_cmd->add_option("--array", view.array,
+                         "array to show (default true_colour; a/A cycles in the window)");
+    view_cmd->add_flag("--log", view.log_scale, "logarithmic colour scale");
+    view_cmd->add_flag("--edges", view.edges, "draw element edges");
+    view_cmd->add_flag("--sensors", view.sensors, "draw the sensor points (sensors.vtp)");
+    view_cmd->add_flag("--discontinuities", view.discontinuities,
+                       "draw the shadow boundaries (discontinuities.vtp)");
+    view_cmd->add_option("--step", view.step, "series step to show, from 0 (default: the last)");
+    view_cmd->add_option("--script", view.script, "scripted events (tests)")->group("");
+    view_cmd->footer("Window controls:\n" + app::view_controls_help());
+    view_cmd->add_flag("-q,--quiet", common.quiet, "only warnings and errors");
+    view_cmd->add_flag("-v,--verbose", common.verbose, "debug messages");
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -129,6 +162,8 @@ int main(int argc, char** argv) {
     try {
         if (*bake_cmd)
             return run_bake(bake, common);
+        if (*view_cmd)
+            return run_view(view, common);
         return run_validate(validate_scene_path, common);
     } catch (const InputError& e) {
         return report("error: ", e.what(), k_input);

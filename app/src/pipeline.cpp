@@ -1,5 +1,6 @@
 #include "app/pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
@@ -7,6 +8,7 @@
 #include "core/files.h"
 #include "mesher/mesher.h"
 #include "raytrace/raytrace.h"
+#include "viewer/view.h"
 #include "viewer/vtk_output.h"
 
 namespace penumbra::app {
@@ -28,6 +30,11 @@ private:
     std::chrono::steady_clock::time_point start_;
 };
 
+bool same_folder(const std::string& a, const std::string& b) {
+    std::error_code ec;
+    return !a.empty() && std::filesystem::equivalent(a, b, ec);
+}
+
 } // namespace
 
 BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& ctx) {
@@ -43,7 +50,21 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
     }
     {
         StageTimer t(result.times, "solve");
-        result.solution = solver::solve_shooting(scene, result.mesh, *rt, ctx, &result.stats);
+        std::optional<viewer::SeriesWriter> series;
+        solver::SolveObserver observer;
+        if (options.series_every_shots > 0) {
+            series.emplace(options.series_dir, scene);
+            observer.every_shots = options.series_every_shots;
+            observer.on_pass = [&](const Solution& snapshot, std::int64_t shots, double, bool) {
+                series->add(result.mesh, snapshot, shots);
+            };
+        }
+        result.solution = solver::solve_shooting(scene, result.mesh, *rt, ctx, &result.stats,
+                                                 series ? &observer : nullptr);
+        if (series) {
+            result.series_dir = options.series_dir;
+            result.series_steps = series->step_count();
+        }
     }
     if (!scene.sensors.empty()) {
         StageTimer t(result.times, "sensors");
@@ -65,6 +86,17 @@ void write_outputs(const std::string& dir, const Scene& scene, const BakeResult&
         throw ConfigError(fmt::format("cannot create output folder '{}': {}", dir, ec.message()));
     auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
     viewer::write_vtu(path("mesh.vtu"), scene, result.mesh, result.solution);
+    // Files of an earlier bake that this one does not write would mix two bakes in the viewer.
+    if (!result.mesh.discontinuities.empty())
+        viewer::write_discontinuities_vtp(path("discontinuities.vtp"), result.mesh);
+    else
+        fs::remove(path("discontinuities.vtp"), ec);
+    if (!scene.sensors.empty())
+        viewer::write_sensors_vtp(path("sensors.vtp"), scene, result.sensors);
+    else
+        fs::remove(path("sensors.vtp"), ec);
+    if (result.series_steps == 0 || !same_folder(result.series_dir, dir))
+        viewer::remove_series(dir);
     if (result.render) {
         write_exr(path("render.exr"), *result.render);
         double exposure = scene.camera->exposure > 0 ? scene.camera->exposure
@@ -74,6 +106,31 @@ void write_outputs(const std::string& dir, const Scene& scene, const BakeResult&
     if (!scene.sensors.empty())
         write_text_file(path("sensors.csv"), sensors_csv(scene, result));
     write_text_file(path("summary.json"), summary_json(scene, result));
+}
+
+void view(const ViewRequest& request, const Context& ctx) {
+    viewer::ViewOptions options;
+    options.input = request.input;
+    options.png = request.png;
+    if (!request.size.empty())
+        viewer::parse_image_size(request.size, options.width, options.height);
+    options.array = request.array;
+    options.log_scale = request.log_scale;
+    options.edges = request.edges;
+    options.sensors = request.sensors;
+    options.discontinuities = request.discontinuities;
+    options.step = request.step;
+    for (std::size_t start = 0; start < request.script.size();) {
+        std::size_t end = std::min(request.script.find(',', start), request.script.size());
+        if (end > start)
+            options.script.push_back(request.script.substr(start, end - start));
+        start = end + 1;
+    }
+    viewer::view(options, ctx);
+}
+
+std::string view_controls_help() {
+    return viewer::view_controls_help();
 }
 
 } // namespace penumbra::app

@@ -14,8 +14,10 @@
 #include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkPolyData.h>
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <filesystem>
@@ -183,7 +185,8 @@ TEST(WriteVtu, CellArraysRoundTrip) {
     expect_scalar_array(cells, "material_id", VTK_INT, std::vector<int>{0, 0, 0, 0, 2});
     expect_scalar_array(cells, "polygon_id", VTK_INT, std::vector<int>{0, 0, 0, 0, 1});
     expect_scalar_array(cells, "back_side", VTK_INT, std::vector<int>{0, 0, 1, 1, 0});
-    EXPECT_EQ(cells->GetNumberOfArrays(), 13);
+    expect_scalar_array(cells, "level", VTK_INT, std::vector<int>{0, 0, 0, 0, 0});
+    EXPECT_EQ(cells->GetNumberOfArrays(), 14);
 }
 
 TEST(WriteVtu, PointArraysRoundTrip) {
@@ -259,6 +262,151 @@ TEST(WriteVtu, Errors) {
     s.radiosity.pop_back();
     EXPECT_THROW(write_vtu(dir + "/mesh.vtu", Scene(), mesh, s), InternalError);
     EXPECT_FALSE(fs::exists(dir + "/mesh.vtu"));
+}
+
+TEST(WriteVtu, HierarchyLevel) {
+    RadiosityMesh mesh = test_mesh();
+    mesh.element_level = {0, 1, 2, 2, 0};
+    const std::string path = test::temp_dir("vtu") + "/mesh.vtu";
+    write_vtu(path, Scene(), mesh, test_solution(mesh));
+    expect_scalar_array(read_vtu(path)->GetCellData(), "level", VTK_INT,
+                        std::vector<int>{0, 1, 2, 2, 0});
+    mesh.element_level.pop_back();
+    EXPECT_THROW(write_vtu(path, Scene(), mesh, test_solution(mesh)), InternalError);
+}
+
+std::vector<double> field_values(vtkFieldData* field, const char* name) {
+    std::vector<double> out;
+    if (vtkDataArray* a = field->GetArray(name))
+        for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+            for (int c = 0; c < a->GetNumberOfComponents(); ++c)
+                out.push_back(a->GetComponent(i, c));
+    return out;
+}
+
+std::vector<std::string> string_values(vtkAbstractArray* array) {
+    std::vector<std::string> out;
+    auto* strings = vtkStringArray::SafeDownCast(array);
+    for (vtkIdType i = 0; strings && i < strings->GetNumberOfValues(); ++i)
+        out.push_back(strings->GetValue(i));
+    return out;
+}
+
+TEST(WriteVtu, CameraAndUnitsInFieldData) {
+    const RadiosityMesh mesh = test_mesh();
+    Scene scene;
+    Camera camera;
+    camera.eye = Vec3(1, 2, 3);
+    camera.look_at = Vec3(1, 2, 0);
+    camera.up = Vec3(0, 1, 0);
+    camera.fov_deg = 40;
+    camera.fov_axis_x = false;
+    camera.width = 320;
+    camera.height = 200;
+    scene.camera = camera;
+    const std::string path = test::temp_dir("vtu") + "/mesh.vtu";
+    write_vtu(path, scene, mesh, test_solution(mesh));
+    auto grid = read_vtu(path);
+    vtkFieldData* field = grid->GetFieldData();
+    EXPECT_EQ(field_values(field, "camera_eye"), (std::vector<double>{1, 2, 3}));
+    EXPECT_EQ(field_values(field, "camera_look_at"), (std::vector<double>{1, 2, 0}));
+    EXPECT_EQ(field_values(field, "camera_up"), (std::vector<double>{0, 1, 0}));
+    EXPECT_EQ(field_values(field, "camera_fov_deg"), (std::vector<double>{40}));
+    EXPECT_EQ(field_values(field, "camera_fov_axis_x"), (std::vector<double>{0}));
+    EXPECT_EQ(field_values(field, "camera_image_size"), (std::vector<double>{320, 200}));
+    const auto units = string_values(field->GetAbstractArray("units"));
+    for (const char* entry : {"illuminance_lx=lx", "luminance_cd_m2=cd/m²", "radiosity=W/m²",
+                              "irradiance_total=W/m²", "emission=W/m²", "reflectance=1"})
+        EXPECT_NE(std::find(units.begin(), units.end(), entry), units.end()) << entry;
+
+    write_vtu(path, Scene(), mesh, test_solution(mesh)); // no camera: no camera arrays
+    EXPECT_EQ(read_vtu(path)->GetFieldData()->GetArray("camera_eye"), nullptr);
+}
+
+vtkSmartPointer<vtkPolyData> read_vtp(const std::string& path) {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    return vtkSmartPointer<vtkPolyData>(reader->GetOutput());
+}
+
+TEST(WriteVtp, Sensors) {
+    Scene scene;
+    scene.sensors = {{"desk", Vec3(1, 2, 0.8), Vec3(0, 0, 1)}, {"wall", Vec3(0, 1, 1), Vec3(1, 0, 0)}};
+    std::vector<SensorReading> readings(2);
+    readings[0] = {Rgb(1, 2, 3), Rgb(2, 3, 4), 100.5, 250.25};
+    readings[1] = {Rgb(0.5f), Rgb(0.75f), 10, 20};
+    const std::string path = test::temp_dir("vtp") + "/sensors.vtp";
+    write_sensors_vtp(path, scene, readings);
+    auto data = read_vtp(path);
+    ASSERT_EQ(data->GetNumberOfPoints(), 2);
+    EXPECT_EQ(data->GetNumberOfVerts(), 2);
+    double p[3];
+    data->GetPoint(0, p);
+    EXPECT_EQ(Vec3(p[0], p[1], p[2]), scene.sensors[0].position);
+    vtkPointData* points = data->GetPointData();
+    ASSERT_NE(points->GetNormals(), nullptr);
+    EXPECT_EQ(points->GetNormals()->GetComponent(1, 0), 1.0);
+    expect_rgb_array(points, "irradiance_direct", {readings[0].irradiance_direct, readings[1].irradiance_direct});
+    expect_rgb_array(points, "irradiance_total", {readings[0].irradiance_total, readings[1].irradiance_total});
+    expect_scalar_array(points, "illuminance_direct_lx", VTK_DOUBLE, std::vector<double>{100.5, 10});
+    expect_scalar_array(points, "illuminance_total_lx", VTK_DOUBLE, std::vector<double>{250.25, 20});
+    EXPECT_EQ(string_values(points->GetAbstractArray("name")),
+              (std::vector<std::string>{"desk", "wall"}));
+    EXPECT_THROW(write_sensors_vtp(path, scene, {}), InternalError);
+}
+
+TEST(WriteVtp, Discontinuities) {
+    RadiosityMesh mesh = test_mesh();
+    mesh.discontinuities = {{Vec3(0, 0, 0), Vec3(1, 0, 0), 10, 1, 0},
+                            {Vec3(0, 1, 0), Vec3(1, 1, 0), 11, -2, 2}};
+    const std::string path = test::temp_dir("vtp") + "/discontinuities.vtp";
+    write_discontinuities_vtp(path, mesh);
+    auto data = read_vtp(path);
+    EXPECT_EQ(data->GetNumberOfPoints(), 4);
+    ASSERT_EQ(data->GetNumberOfLines(), 2);
+    double p[3];
+    data->GetPoint(3, p);
+    EXPECT_EQ(Vec3(p[0], p[1], p[2]), Vec3(1, 1, 0));
+    expect_scalar_array(data->GetCellData(), "order", VTK_INT, std::vector<int>{0, 2});
+    expect_scalar_array(data->GetCellData(), "source", VTK_INT, std::vector<int>{1, -2});
+    expect_scalar_array(data->GetCellData(), "surface", VTK_INT, std::vector<int>{10, 11});
+}
+
+TEST(WritePvd, SeriesStepsAndReplacement) {
+    const RadiosityMesh mesh = test_mesh();
+    const std::string dir = test::temp_dir("series");
+    write_text_file(dir + "/series.pvd", "stale");
+    fs::create_directories(dir + "/series");
+    write_text_file(dir + "/series/mesh_00000999.vtu", "stale");
+    write_text_file(dir + "/series/notes.txt", "not ours");
+    {
+        const Scene scene;
+        SeriesWriter series(dir, scene);
+        EXPECT_FALSE(fs::exists(dir + "/series/mesh_00000999.vtu"));
+        EXPECT_TRUE(fs::exists(dir + "/series/notes.txt"));
+        Solution s = test_solution(mesh);
+        series.add(mesh, s, 10);
+        series.add(mesh, s, 20);
+        s.radiosity[0] = Rgb(42.0f);
+        series.add(mesh, s, 20); // the final solution at the same count replaces the step
+        EXPECT_EQ(series.step_count(), 2u);
+        EXPECT_EQ(series.last_shots(), 20);
+    }
+    const std::string pvd = read_text_file(dir + "/series.pvd");
+    EXPECT_NE(pvd.find("type=\"Collection\""), std::string::npos) << pvd;
+    EXPECT_NE(pvd.find("timestep=\"10\" group=\"\" part=\"0\" file=\"series/mesh_00000010.vtu\""),
+              std::string::npos) << pvd;
+    EXPECT_NE(pvd.find("timestep=\"20\" group=\"\" part=\"0\" file=\"series/mesh_00000020.vtu\""),
+              std::string::npos) << pvd;
+    EXPECT_EQ(read_vtu(dir + "/series/mesh_00000020.vtu")
+                  ->GetCellData()->GetArray("radiosity")->GetComponent(0, 0), 42.0);
+
+    EXPECT_TRUE(remove_series(dir));
+    EXPECT_FALSE(fs::exists(dir + "/series.pvd"));
+    EXPECT_FALSE(fs::exists(dir + "/series/mesh_00000010.vtu"));
+    EXPECT_TRUE(fs::exists(dir + "/series/notes.txt"));
+    EXPECT_FALSE(remove_series(dir));
 }
 
 } // namespace

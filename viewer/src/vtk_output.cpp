@@ -8,13 +8,13 @@
 #include "core/error.h"
 #include "core/files.h"
 
+#include "vtk_util.h"
+
 #include <fmt/format.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
-#include <vtkCommand.h>
-#include <vtkErrorCode.h>
-#include <vtkExecutive.h>
+#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkIdTypeArray.h>
@@ -35,59 +35,6 @@ namespace penumbra::viewer {
 
 namespace {
 
-/// Collects the first error a VTK object reports. While an observer is registered, VTK sends
-/// the object's errors to it instead of printing them.
-class ErrorCapture final : public vtkCommand {
-public:
-    static ErrorCapture* New() { return new ErrorCapture; }
-    void Execute(vtkObject*, unsigned long, void* call_data) override {
-        if (message.empty())
-            message = call_data ? plain_message(static_cast<const char*>(call_data))
-                                : "unknown VTK error";
-    }
-    std::string message;
-
-private:
-    /// VTK's text is "ERROR: In file, line n\nClass (address): message\n\n": keep the message.
-    static std::string plain_message(std::string text) {
-        if (auto line_end = text.find('\n');
-            text.rfind("ERROR: In ", 0) == 0 && line_end != std::string::npos)
-            text.erase(0, line_end + 1);
-        if (auto colon = text.find("): "); colon != std::string::npos)
-            text.erase(0, colon + 3);
-        while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
-            text.pop_back();
-        return text;
-    }
-};
-
-template <typename Fn>
-void add_rgb(vtkDataSetAttributes* data, const char* name, std::size_t count, Fn&& value_of) {
-    vtkNew<vtkFloatArray> array;
-    array->SetName(name);
-    array->SetNumberOfComponents(3);
-    array->SetNumberOfTuples(vtkIdType(count));
-    float* out = array->GetPointer(0);
-    for (std::size_t i = 0; i < count; ++i) {
-        const Rgb c = value_of(i);
-        out[3 * i + 0] = c.r;
-        out[3 * i + 1] = c.g;
-        out[3 * i + 2] = c.b;
-    }
-    data->AddArray(array);
-}
-
-template <typename Array, typename Fn>
-void add_scalar(vtkDataSetAttributes* data, const char* name, std::size_t count, Fn&& value_of) {
-    vtkNew<Array> array;
-    array->SetName(name);
-    array->SetNumberOfComponents(1);
-    array->SetNumberOfTuples(vtkIdType(count));
-    for (std::size_t i = 0; i < count; ++i)
-        array->SetValue(vtkIdType(i), value_of(i));
-    data->AddArray(array);
-}
-
 float illuminance_lx(const Rgb& irradiance) {
     return float(to_photometric(irradiance));
 }
@@ -105,6 +52,7 @@ void check_mesh(const RadiosityMesh& mesh) {
     for (const auto& t : mesh.triangles)
         ok = ok && t[0] < mesh.vertex_count() && t[1] < mesh.vertex_count() &&
              t[2] < mesh.vertex_count();
+    ok = ok && (mesh.element_level.empty() || mesh.element_level.size() == mesh.element_count());
     if (!ok)
         throw InternalError("write_vtu: the mesh's vertex, element and patch arrays disagree");
 }
@@ -134,6 +82,10 @@ void add_cell_patch_arrays(vtkCellData* data, const RadiosityMesh& mesh) {
     const std::size_t n = mesh.element_count();
     add_rgb(data, "emission", n, [&](std::size_t e) { return mesh.patch_of(e).emission; });
     add_rgb(data, "reflectance", n, [&](std::size_t e) { return mesh.patch_of(e).reflectance; });
+    // An empty element_level means a flat mesh: every element is a level-0 mesh triangle.
+    add_scalar<vtkIntArray>(data, "level", n, [&](std::size_t e) {
+        return mesh.element_level.empty() ? 0 : int(mesh.element_level[e]);
+    });
     add_scalar<vtkIntArray>(data, "surface_id", n,
                             [&](std::size_t e) { return int(mesh.patch_of(e).surface); });
     add_scalar<vtkIntArray>(data, "patch_id", n,
@@ -192,25 +144,30 @@ void set_geometry(vtkUnstructuredGrid* grid, const RadiosityMesh& mesh) {
     grid->SetCells(VTK_TRIANGLE, cells);
 }
 
-void write_grid(vtkUnstructuredGrid* grid, const std::string& temp, const std::string& path) {
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    vtkNew<ErrorCapture> errors;
-    // The executive reports the writer's failure again; observe both so nothing is printed.
-    writer->AddObserver(vtkCommand::ErrorEvent, errors);
-    writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
-    writer->SetFileName(temp.c_str());
-    writer->SetInputData(grid);
-    writer->SetDataModeToAppended();
-    writer->EncodeAppendedDataOff(); // raw binary, not base64
-    writer->SetCompressorTypeToZLib();
-    writer->SetHeaderTypeToUInt64();
-    const bool ok = writer->Write() == 1;
-    const unsigned long code = writer->GetErrorCode();
-    if (ok && code == vtkErrorCode::NoError && errors->message.empty())
-        return;
-    std::string reason =
-        !errors->message.empty() ? errors->message : vtkErrorCode::GetStringFromErrorCode(code);
-    throw ExternalError(fmt::format("cannot write VTK file '{}': {}", path, reason));
+void add_vector_field(vtkFieldData* data, const char* name, const Vec3& v) {
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(name);
+    array->SetNumberOfComponents(3);
+    array->InsertNextTuple3(v.x, v.y, v.z);
+    data->AddArray(array);
+}
+
+template <typename Array, typename... Values>
+void add_field(vtkFieldData* data, const char* name, Values... values) {
+    vtkNew<Array> array;
+    array->SetName(name);
+    (array->InsertNextValue(values), ...);
+    data->AddArray(array);
+}
+
+/// The scene camera as field data, the preset `penumbra view` starts from.
+void add_camera(vtkFieldData* data, const Camera& camera) {
+    add_vector_field(data, "camera_eye", camera.eye);
+    add_vector_field(data, "camera_look_at", camera.look_at);
+    add_vector_field(data, "camera_up", camera.up);
+    add_field<vtkDoubleArray>(data, "camera_fov_deg", camera.fov_deg);
+    add_field<vtkIntArray>(data, "camera_fov_axis_x", camera.fov_axis_x ? 1 : 0);
+    add_field<vtkIntArray>(data, "camera_image_size", camera.width, camera.height);
 }
 
 } // namespace
@@ -221,20 +178,31 @@ void write_vtu(const std::string& path, const Scene& scene, const RadiosityMesh&
     const bool has_solution = check_solution(mesh, solution);
     vtkNew<vtkUnstructuredGrid> grid;
     set_geometry(grid, mesh);
-    add_cell_patch_arrays(grid->GetCellData(), mesh);
-    add_scalar<vtkIntArray>(
-        grid->GetPointData(), "surface_id", mesh.vertex_count(),
-        [&](std::size_t v) { return int(mesh.patches[mesh.vertex_patch[v]].surface); });
+    // Solution arrays first: viewers list arrays in file order.
     if (has_solution) {
         add_cell_solution_arrays(grid->GetCellData(), solution, mesh.element_count());
         add_point_solution_arrays(grid->GetPointData(), solution, mesh.vertex_count());
     }
-    vtkNew<vtkStringArray> name;
-    name->SetName("scene_name");
-    name->InsertNextValue(scene.name);
-    grid->GetFieldData()->AddArray(name);
+    add_cell_patch_arrays(grid->GetCellData(), mesh);
+    add_scalar<vtkIntArray>(
+        grid->GetPointData(), "surface_id", mesh.vertex_count(),
+        [&](std::size_t v) { return int(mesh.patches[mesh.vertex_patch[v]].surface); });
+    add_field<vtkStringArray>(grid->GetFieldData(), "scene_name", scene.name);
+    if (scene.camera)
+        add_camera(grid->GetFieldData(), *scene.camera);
+    add_units(grid, {{"radiosity", "W/m²"},
+                     {"irradiance_direct", "W/m²"},
+                     {"irradiance_indirect", "W/m²"},
+                     {"irradiance_total", "W/m²"},
+                     {"emission", "W/m²"},
+                     {"reflectance", "1"},
+                     {"illuminance_lx", "lx"},
+                     {"luminance_cd_m2", "cd/m²"}});
 
-    write_atomically(path, [&](const std::string& temp) { write_grid(grid, temp, path); });
+    write_atomically(path, [&](const std::string& temp) {
+        vtkNew<vtkXMLUnstructuredGridWriter> writer;
+        write_xml(writer, grid, temp, path);
+    });
 }
 
 } // namespace penumbra::viewer

@@ -27,18 +27,47 @@ struct BakeResult {
     std::optional<Image> render; ///< when the scene has a camera and rendering is on
     std::vector<StageTime> times;
     std::uint64_t rays = 0;
+    std::string series_dir; ///< where the solve's series was written (empty if none)
+    std::size_t series_steps = 0;
 };
 
 struct BakeOptions {
     bool render = true;
+    /// When > 0, the solve writes a VTK snapshot every this many shots, and the final solution
+    /// as the last step, to series_dir/series/ and series_dir/series.pvd (viewer::SeriesWriter).
+    std::int64_t series_every_shots = 0;
+    std::string series_dir;
 };
 
 /// \brief Runs mesher, solver, sensors and renderer on \p scene.
 BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& ctx);
 
-/// \brief Writes mesh.vtu, render.exr/png, sensors.csv and summary.json into \p dir (each
-///        file atomically). Throws ExternalError/ConfigError.
+/// \brief Writes mesh.vtu, render.exr/png, sensors.csv, sensors.vtp, discontinuities.vtp (when
+///        the mesh has any) and summary.json into \p dir (each file atomically). Removes a
+///        sensors.vtp, discontinuities.vtp or series (series.pvd, series/) that an earlier bake
+///        left in \p dir and this one did not write. Throws ExternalError/ConfigError.
 void write_outputs(const std::string& dir, const Scene& scene, const BakeResult& result);
+
+/// \brief The options of `penumbra view` as the CLI gives them (see viewer/view.h, which
+///        this library wraps so that the CLI links the pipeline only).
+struct ViewRequest {
+    std::string input;      ///< output folder or .vtu/.vtp/.pvd file
+    std::string png;        ///< empty = interactive window
+    std::string size;       ///< "WxH" or empty
+    std::string array;      ///< empty = true colour
+    bool log_scale = false;
+    bool edges = false;
+    bool sensors = false;
+    bool discontinuities = false;
+    int step = -1;          ///< -1 = last
+    std::string script;     ///< comma-separated scripted events (tests)
+};
+
+/// \brief Runs `penumbra view`: the window, or the PNG. Throws ConfigError for bad options.
+void view(const ViewRequest& request, const Context& ctx);
+
+/// \brief The window's controls, for `penumbra view --help`.
+std::string view_controls_help();
 
 /// \brief summary.json text: element count, rays, time per stage, power balance.
 std::string summary_json(const Scene& scene, const BakeResult& result);

@@ -1,7 +1,12 @@
 #pragma once
-// VTK XML output of the radiosity mesh and its solution.
+// VTK XML output of the radiosity mesh, its solution, sensors, discontinuity segments and the
+// passes of a progressive solve, for ParaView and `penumbra view`. Every file is written
+// atomically (temporary name, then rename). Each file's field data holds an array "units" of
+// "name=unit" strings for the arrays that have a unit.
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/mesh.h"
 #include "core/scene.h"
@@ -9,12 +14,63 @@
 namespace penumbra::viewer {
 
 /// \brief Writes \p path (.vtu, VTK XML unstructured grid, binary appended, zlib) atomically.
-///        Cell data: radiosity, irradiance_direct, irradiance_indirect (RGB, W/m²),
-///        illuminance_lx, luminance_cd_m2, reflectance, emission, surface_id, patch_id,
-///        material_id, back_side. Point data: the same radiometric and photometric values
-///        from the vertex solution, and surface_id.
-/// \throws ExternalError if VTK cannot write the file.
+///        Cell data: radiosity, irradiance_direct, irradiance_indirect, irradiance_total (RGB,
+///        W/m²), illuminance_lx, luminance_cd_m2, reflectance, emission (RGB, W/m²), level,
+///        surface_id, patch_id, material_id, polygon_id, back_side. Point data: the
+///        radiometric and photometric values of the vertex solution, and surface_id. Field
+///        data: scene_name, units and, when the scene has a camera, camera_eye,
+///        camera_look_at, camera_up (metres), camera_fov_deg, camera_fov_axis_x and
+///        camera_image_size (the preset `penumbra view` starts from).
+/// \throws ExternalError if VTK cannot write the file; InternalError if the arrays of
+///         \p mesh and \p solution disagree.
 void write_vtu(const std::string& path, const Scene& scene, const RadiosityMesh& mesh,
                const Solution& solution);
+
+/// \brief Writes the sensors as a VTK XML poly data file (.vtp) of vertices: points, normals
+///        and point data irradiance_direct, irradiance_total (RGB, W/m²),
+///        illuminance_direct_lx, illuminance_total_lx and name. \p readings[i] belongs to
+///        scene.sensors[i].
+void write_sensors_vtp(const std::string& path, const Scene& scene,
+                       const std::vector<SensorReading>& readings);
+
+/// \brief Writes the discontinuity segments of \p mesh as a .vtp of lines with cell data
+///        order, source and surface (see DiscontinuitySegment).
+void write_discontinuities_vtp(const std::string& path, const RadiosityMesh& mesh);
+
+/// \brief One step of a .pvd collection: a time value and a file relative to the .pvd.
+struct PvdStep {
+    double timestep = 0;
+    std::string file;
+};
+
+/// \brief Writes a ParaView data collection (.pvd) listing \p steps in order.
+void write_pvd(const std::string& path, const std::vector<PvdStep>& steps);
+
+/// \brief Writes the passes of a solve as `DIR/series/mesh_<shots>.vtu` plus `DIR/series.pvd`
+///        (timestep = shots, or sweeps for gathering solvers). Each add() writes its file at
+///        once and rewrites the .pvd, so an interrupted solve leaves a readable series;
+///        snapshots are not kept in memory. Construction removes the files of an earlier
+///        series in DIR. Keeps a reference to \p scene, which must outlive it. Not thread-safe.
+class SeriesWriter {
+public:
+    SeriesWriter(std::string dir, const Scene& scene);
+    /// \brief Writes \p snapshot on \p mesh as the step at \p shots. A step at the same shot
+    ///        count as the previous one (the final solution right after a snapshot, or on a
+    ///        refined mesh) replaces it.
+    void add(const RadiosityMesh& mesh, const Solution& snapshot, std::int64_t shots);
+    std::size_t step_count() const { return steps_.size(); }
+    /// The shot count of the last step, -1 before the first.
+    std::int64_t last_shots() const;
+
+private:
+    std::string dir_;
+    const Scene& scene_;
+    std::vector<PvdStep> steps_;
+};
+
+/// \brief Removes `DIR/series.pvd` and the `DIR/series/mesh_*.vtu` files (and the folder if
+///        then empty), so that a folder's outputs never mix two bakes. Returns true if
+///        anything was removed.
+bool remove_series(const std::string& dir);
 
 } // namespace penumbra::viewer

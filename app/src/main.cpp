@@ -42,6 +42,9 @@ struct BakeFlags {
     double max_edge_m = 0;
     double residual = 0;
     bool no_render = false;
+    std::string method;
+    double epsilon = 0;
+    double min_area_m2 = 0;
     std::int64_t series_every_shots = 0;
 };
 
@@ -71,6 +74,12 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
         scene.mesher.max_edge_length = flags.max_edge_m;
     if (flags.residual > 0)
         scene.solver.residual = flags.residual;
+    if (!flags.method.empty())
+        scene.solver.method = flags.method;
+    if (flags.epsilon > 0)
+        scene.solver.epsilon = flags.epsilon;
+    if (flags.min_area_m2 > 0)
+        scene.solver.min_area = flags.min_area_m2;
     check_output_dir(flags.output);
     app::BakeOptions options;
     options.render = !flags.no_render;
@@ -126,6 +135,15 @@ int main(int argc, char** argv) {
                          "stop when unshot power / emitted power falls below this")
         ->check(CLI::Range(1e-12, 0.999999));
     bake_cmd->add_flag("--no-render", bake.no_render, "skip the camera render");
+    bake_cmd->add_option("--method", bake.method, "solver method (overrides solver.method)")
+        ->check(CLI::IsMember({"hierarchical", "shooting", "jacobi", "gauss_seidel", "matrix"}));
+    bake_cmd->add_option("--epsilon", bake.epsilon,
+                         "hierarchical: refinement threshold, relative to the brightest source's "
+                         "exitance (overrides solver.epsilon)")
+        ->check(CLI::Range(1e-12, 1.0));
+    bake_cmd->add_option("--min-area", bake.min_area_m2,
+                         "hierarchical: smallest element area in m² (overrides solver.min_area)")
+        ->check(CLI::PositiveNumber);
     bake_cmd->add_option("--series", bake.series_every_shots,
                          "write the solution every K shots as series/mesh_*.vtu + series.pvd")
         ->check(CLI::PositiveNumber);

@@ -59,9 +59,20 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
                 series->add(result.mesh, snapshot, shots);
             };
         }
-        result.solution = solver::solve_shooting(scene, result.mesh, *rt, ctx, &result.stats,
-                                                 series ? &observer : nullptr);
+        solver::SolveResult solved = solver::solve(scene, result.mesh, *rt, ctx, &result.stats,
+                                                   series ? &observer : nullptr);
+        result.solution = std::move(solved.solution);
+        if (solved.refined_mesh) {
+            // The solution lives on the leaf mesh: trace that from now on.
+            result.rays += rt->rays_traced();
+            rt.reset();
+            result.mesh = std::move(*solved.refined_mesh);
+            rt.emplace(result.mesh);
+        }
         if (series) {
+            // The last step is the final solution, on the mesh it lives on.
+            if (solved.refined_mesh)
+                series->add(result.mesh, result.solution, series->last_shots());
             result.series_dir = options.series_dir;
             result.series_steps = series->step_count();
         }
@@ -74,7 +85,7 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
         StageTimer t(result.times, "render");
         result.render = raytrace::render_solution(*rt, result.solution, *scene.camera, ctx);
     }
-    result.rays = rt->rays_traced();
+    result.rays += rt->rays_traced();
     return result;
 }
 

@@ -38,8 +38,10 @@ std::string summary_json(const Scene& scene, const BakeResult& result) {
     j["patches"] = result.mesh.patches.size();
     j["input_polygons"] = scene.polygons.size();
     j["rays_traced"] = result.rays;
-    j["solver"] = {{"method", "shooting"},
-                   {"shots", result.stats.shots},
+    j["solver"] = {{"method", scene.solver.method},
+                   {"shots_or_sweeps", result.stats.shots},
+                   {"links", result.stats.links},
+                   {"epsilon", scene.solver.epsilon},
                    {"residual_target", scene.solver.residual},
                    {"residual_history", result.stats.residual_history}};
     nlohmann::json times = nlohmann::json::object();

@@ -359,11 +359,41 @@ MesherSettings parse_mesher(const Field& field, double metres_per_unit) {
     return mesher;
 }
 
-SolverSettings parse_solver(const Field& field) {
-    field.expect_keys({"residual", "ambient", "max_shots", "visibility_rays", "row_cache_mb"});
+double number_in(const Field& field, double lo, double hi, const char* range) {
+    const double v = field.number();
+    if (!(v >= lo && v <= hi))
+        field.fail(fmt::format("{} must be in {}", v, range));
+    return v;
+}
+
+SolverSettings parse_solver(const Field& field, double metres_per_unit) {
+    field.expect_keys({"method", "oracle", "residual", "epsilon", "min_area", "max_sweeps", "ambient",
+                       "max_shots", "visibility_rays", "row_cache_mb"});
     SolverSettings solver;
+    if (field.has("method")) {
+        const Field method = field.child("method");
+        solver.method = method.string();
+        const char* known[] = {"hierarchical", "shooting", "jacobi", "gauss_seidel", "matrix"};
+        if (std::find(std::begin(known), std::end(known), solver.method) == std::end(known))
+            method.fail(fmt::format("unknown method '{}' (known: hierarchical, shooting, jacobi, "
+                                    "gauss_seidel, matrix)",
+                                    solver.method));
+    }
+    if (field.has("oracle")) {
+        const Field oracle = field.child("oracle");
+        solver.oracle = oracle.string();
+        if (solver.oracle != "variation" && solver.oracle != "bf")
+            oracle.fail(fmt::format("unknown oracle '{}' (known: variation, bf)", solver.oracle));
+    }
     if (field.has("residual"))
-        solver.residual = field.child("residual").number();
+        solver.residual = number_in(field.child("residual"), 1e-12, 0.5, "[1e-12, 0.5]");
+    if (field.has("epsilon"))
+        solver.epsilon = number_in(field.child("epsilon"), 1e-12, 1.0, "[1e-12, 1]");
+    if (field.has("min_area"))
+        solver.min_area = number_in(field.child("min_area"), 0.0, 1e30, "[0, 1e30]") *
+                          metres_per_unit * metres_per_unit;
+    if (field.has("max_sweeps"))
+        solver.max_sweeps = int(field.child("max_sweeps").integer(1, 1 << 24));
     if (field.has("ambient"))
         solver.ambient = field.child("ambient").boolean();
     if (field.has("max_shots"))
@@ -371,7 +401,7 @@ SolverSettings parse_solver(const Field& field) {
     if (field.has("visibility_rays"))
         solver.visibility_rays = int(field.child("visibility_rays").integer(1, 1 << 16));
     if (field.has("row_cache_mb"))
-        solver.row_cache_mb = field.child("row_cache_mb").number();
+        solver.row_cache_mb = number_in(field.child("row_cache_mb"), 0.0, 1e9, "[0, 1e9]");
     return solver;
 }
 
@@ -412,7 +442,7 @@ void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
     if (root.has("mesher"))
         scene.mesher = parse_mesher(root.child("mesher"), scale);
     if (root.has("solver"))
-        scene.solver = parse_solver(root.child("solver"));
+        scene.solver = parse_solver(root.child("solver"), scale);
 }
 
 } // namespace

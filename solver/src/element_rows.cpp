@@ -85,12 +85,18 @@ void cast_pair_rays(const Quadrature& quad, const PointValues& f, const Oriented
                     std::array<int, k_max_quadrature_points>& open) {
     std::vector<Segment> segments;
     segments.reserve(quad.count * std::size_t(per_point));
+    // Endpoints leave their own surface along its normal and, where the two planes meet at an
+    // angle, the other surface's plane too: a target on a wall next to the floor would
+    // otherwise end within float precision of the floor and count as blocked.
+    const double cross_weight = offset * (1.0 - std::abs(dot(a.n, b.n)));
+    const Vec3 lift_a = a.n * offset + b.n * cross_weight;
+    const Vec3 lift_b = b.n * offset + a.n * cross_weight;
     for (std::size_t q = 0; q < quad.count; ++q) {
         if (f[q] <= 0)
             continue;
-        Vec3 from = quad.point[q] + a.n * offset;
+        Vec3 from = quad.point[q] + lift_a;
         for (int r = 0; r < per_point; ++r) {
-            Vec3 to = sample_triangle(b.v, rng.next_double(), rng.next_double()) + b.n * offset;
+            Vec3 to = sample_triangle(b.v, rng.next_double(), rng.next_double()) + lift_b;
             segments.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
         }
     }
@@ -112,6 +118,20 @@ bool is_near(const OrientedTriangle& a, const OrientedTriangle& b) {
     return length(cb - ca) < k_near_factor * (longest_edge(a.v) + longest_edge(b.v));
 }
 
+int quadrature_level_for(const OrientedTriangle& a, const OrientedTriangle& b,
+                         const RowSettings& settings) {
+    if (is_near(a, b))
+        return settings.near_quadrature_level;
+    // F(x → b) is convex over a, so a coarse centroid rule underestimates its integral
+    // (Jensen): resolve a finely enough relative to the distance, whatever b's size.
+    const Vec3 ca = (a.v[0] + a.v[1] + a.v[2]) / 3.0, cb = (b.v[0] + b.v[1] + b.v[2]) / 3.0;
+    const double ratio = longest_edge(a.v) / std::max(length(cb - ca), 1e-300);
+    const int level = ratio < 0.1 ? settings.quadrature_level
+                                  : (ratio < 0.4 ? settings.quadrature_level + 1
+                                                 : settings.quadrature_level + 2);
+    return std::min(level, settings.near_quadrature_level);
+}
+
 double triangle_form_factor_unoccluded(const OrientedTriangle& a, const OrientedTriangle& b,
                                        int level) {
     PointValues f_point{};
@@ -128,6 +148,8 @@ PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTri
     result.f_unoccluded = point_form_factors(quad, a, b, f_point);
     if (result.f_unoccluded <= 0)
         return result;
+    const auto [lo, hi] = std::minmax_element(f_point.begin(), f_point.begin() + quad.count);
+    result.f_spread = *hi - *lo;
     const auto active = std::size_t(std::count_if(f_point.begin(), f_point.begin() + quad.count,
                                                   [](double f) { return f > 0; }));
     Pcg32 rng = Pcg32::for_stream(RngPurpose::form_factor_visibility, key_a, key_b, 0,
@@ -154,8 +176,6 @@ PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTri
     return result;
 }
 
-namespace {
-
 double escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
                        std::uint32_t i, const RowSettings& settings) {
     const int rays = geo.emitter[i] ? settings.escape_rays_emitter : settings.escape_rays;
@@ -175,6 +195,8 @@ double escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibi
     auto misses = std::count(blocked.begin(), blocked.end(), std::uint8_t(0));
     return double(misses) / double(segments.size());
 }
+
+namespace {
 
 // Both rules satisfy Σ_j F(x → j) = 1 at each of their points in a closed unoccluded scene,
 // so the far receivers' true sum is the coarse total minus the near receivers' fine values.

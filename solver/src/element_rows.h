@@ -46,6 +46,9 @@ struct PairFormFactor {
     double f = 0;            ///< with visibility
     double f_unoccluded = 0; ///< without
     bool partial = false;    ///< the visibility rays disagreed (a penumbra)
+    /// Spread of the point form factors over a's quadrature points (0 where a point lies
+    /// behind b): how far F varies over a, the error of giving all of a one value.
+    double f_spread = 0;
 };
 
 /// \brief F_ab = (1/A_a) ∫_a F(x → b) V(x, b) dx by the equal-weight rule of \p level on a,
@@ -71,6 +74,12 @@ inline constexpr double k_near_factor = 2.0;
 /// True if a and b are near in the sense of k_near_factor.
 bool is_near(const OrientedTriangle& a, const OrientedTriangle& b);
 
+/// \brief Quadrature level for integrating over \p a toward \p b: the near level within
+///        k_near_factor sizes, else finer the larger a is relative to the distance (one level
+///        above a tenth, two above 0.4), whatever b's size.
+int quadrature_level_for(const OrientedTriangle& a, const OrientedTriangle& b,
+                         const RowSettings& settings);
+
 /// Non-zero form factors F_ij of shooter i, receivers in increasing order.
 struct Row {
     std::vector<std::uint32_t> receiver;
@@ -78,6 +87,11 @@ struct Row {
     double escape = 0; ///< fraction of i's power leaving the scene, from its own rays
     std::size_t bytes() const { return receiver.capacity() * 4 + form_factor.capacity() * 4; }
 };
+
+/// \brief Fraction of element i's emitted power that leaves the scene, from its own cosine rays
+///        (escape_rays, or escape_rays_emitter for emitters).
+double escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
+                       std::uint32_t i, const RowSettings& settings);
 
 /// \brief F_ij = (1/A_i) ∫_i F(x → j) V(x, j) dx by the equal-weight rule on i, analytic
 ///        point-to-triangle F and visibility from rays keyed by (i, j, seed). For every

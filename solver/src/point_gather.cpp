@@ -16,10 +16,12 @@ namespace {
 double triangle_visibility(const ElementGeometry& geo, const VisibilityQuery& visibility,
                            const GatherPoint& p, std::uint32_t s, int rays, Pcg32& rng) {
     std::vector<Segment> segments(std::size_t(std::max(rays, 1)));
-    const Vec3 from = p.position + p.normal * geo.offset;
+    // As in element_rows.cpp: lift both ends off both planes where they meet at an angle.
+    const double cross_weight = geo.offset * (1.0 - std::abs(dot(p.normal, geo.normal[s])));
+    const Vec3 from = p.position + p.normal * geo.offset + geo.normal[s] * cross_weight;
     for (Segment& seg : segments) {
         Vec3 to = sample_triangle(geo.triangle[s], rng.next_double(), rng.next_double()) +
-                  geo.normal[s] * geo.offset;
+                  geo.normal[s] * geo.offset + p.normal * cross_weight;
         seg = {Vec3f(from), Vec3f(to - from), 0.0f, 1.0f};
     }
     std::vector<std::uint8_t> blocked(segments.size());

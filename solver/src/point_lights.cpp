@@ -29,8 +29,10 @@ double visible_fraction(const ElementGeometry& geo, const VisibilityQuery& visib
     return double(open) / double(segments.size());
 }
 
-double escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
-                       const Vec3& light, std::size_t light_id, std::uint64_t seed) {
+} // namespace
+
+double light_escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
+                             const Vec3& light, std::size_t light_id, std::uint64_t seed) {
     Pcg32 rng = Pcg32::for_stream(RngPurpose::escape_estimate, light_id, 1, 0, seed);
     std::vector<Segment> segments(k_escape_rays_per_light);
     const float reach = float(4.0 * geo.diagonal + 1.0);
@@ -43,8 +45,6 @@ double escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibi
     return double(misses) / double(segments.size());
 }
 
-} // namespace
-
 void shoot_point_lights(ShootingState& state, const ElementGeometry& geo,
                         const std::vector<PointLight>& lights, const VisibilityQuery& visibility,
                         const RowSettings& settings, const Context& ctx) {
@@ -53,7 +53,7 @@ void shoot_point_lights(ShootingState& state, const ElementGeometry& geo,
         const Vec3 p = light.position;
         state.emitted += RgbD(light.intensity) * (4.0 * k_pi);
         state.escaped += RgbD(light.intensity) *
-                         (4.0 * k_pi * escape_fraction(geo, visibility, p, l, settings.seed));
+                         (4.0 * k_pi * light_escape_fraction(geo, visibility, p, l, settings.seed));
         parallel_for_index(geo.size(), 64, [&](std::size_t j) {
             if (dot(p - geo.triangle[j][0], geo.normal[j]) <= 0)
                 return; // the light is behind this side

@@ -10,6 +10,10 @@
 
 namespace penumbra::solver {
 
+/// \brief Fraction of a point light's power that leaves the scene, from its own rays.
+double light_escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
+                             const Vec3& light, std::size_t light_id, std::uint64_t seed);
+
 /// \brief Shoots every isotropic point light once: element j receives I·Ω_j·V_j / A_j, with
 ///        Ω_j the exact solid angle of j (so that a closed scene catches all 4πI) and V_j the
 ///        visible fraction from rays. The escaping fraction is estimated by its own rays.

@@ -137,7 +137,8 @@ LoopResult shooting_loop(ShootingState& s, const RadiosityMesh& mesh, const Elem
         }
         if (observer && observer->on_pass && observer->every_shots > 0 &&
             result.shots % observer->every_shots == 0)
-            observer->on_pass(snapshot_solution(mesh, s), result.shots,
+            observer->on_pass(snapshot_solution(mesh, {s.radiosity, s.h_direct, s.h_indirect}),
+                              result.shots,
                               unshot / std::max(emitted, 1e-300), false);
         progress.update(std::log(start / std::max(unshot, 1e-300)) /
                         std::log(start / std::max(target, 1e-300)));
@@ -214,7 +215,9 @@ Solution solve_shooting(const Scene& scene, const RadiosityMesh& mesh,
         PowerBalance balance = balance_of(state, geo);
         if (scene.solver.ambient)
             add_ambient(state, geo);
-        Solution solution = make_solution(scene, mesh, geo, state, visibility, row_settings, ctx);
+        Solution solution =
+            make_solution(scene, mesh, geo, {state.radiosity, state.h_direct, state.h_indirect},
+                          visibility, row_settings, ctx);
         if (observer && observer->on_pass)
             observer->on_pass(solution, loop.shots,
                               balance.residual.sum() / std::max(balance.emitted.sum(), 1e-300),

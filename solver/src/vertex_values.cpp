@@ -36,26 +36,29 @@ std::vector<Rgb> area_weighted_vertex_mean(const RadiosityMesh& mesh,
 
 } // namespace
 
-Solution snapshot_solution(const RadiosityMesh& mesh, const ShootingState& state) {
+Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& result) {
     Solution sol;
-    sol.radiosity = state.radiosity;
-    sol.irradiance_direct = state.h_direct;
-    sol.irradiance_indirect = state.h_indirect;
-    sol.vertex_radiosity = area_weighted_vertex_mean(mesh, state.radiosity);
-    sol.vertex_irradiance_direct = area_weighted_vertex_mean(mesh, state.h_direct);
-    sol.vertex_irradiance_indirect = area_weighted_vertex_mean(mesh, state.h_indirect);
+    sol.radiosity = result.radiosity;
+    sol.irradiance_direct = result.h_direct;
+    sol.irradiance_indirect = result.h_indirect;
+    sol.vertex_radiosity = area_weighted_vertex_mean(mesh, result.radiosity);
+    sol.vertex_irradiance_direct = area_weighted_vertex_mean(mesh, result.h_direct);
+    sol.vertex_irradiance_indirect = area_weighted_vertex_mean(mesh, result.h_indirect);
     return sol;
 }
 
 Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const ElementGeometry& geo,
-                       const ShootingState& state, const VisibilityQuery& visibility,
+                       ElementResult result, const VisibilityQuery& visibility,
                        const RowSettings& settings, const Context& ctx) {
     Solution sol;
-    sol.radiosity = state.radiosity;
-    sol.irradiance_direct = state.h_direct;
-    sol.irradiance_indirect = state.h_indirect;
-    sol.vertex_irradiance_indirect = area_weighted_vertex_mean(mesh, state.h_indirect);
-    const GatherSources sources = direct_sources(scene, state.emission);
+    sol.vertex_irradiance_indirect = area_weighted_vertex_mean(mesh, result.h_indirect);
+    sol.radiosity = std::move(result.radiosity);
+    sol.irradiance_direct = std::move(result.h_direct);
+    sol.irradiance_indirect = std::move(result.h_indirect);
+    std::vector<Rgb> emission(mesh.element_count());
+    for (std::size_t e = 0; e < emission.size(); ++e)
+        emission[e] = mesh.patch_of(std::uint32_t(e)).emission;
+    const GatherSources sources = direct_sources(scene, emission);
     const std::size_t nv = mesh.vertex_count();
     sol.vertex_irradiance_direct.resize(nv);
     sol.vertex_radiosity.resize(nv);

@@ -6,22 +6,26 @@
 #include "core/visibility.h"
 #include "element_rows.h"
 #include "point_gather.h"
-#include "shooting_state.h"
 
 namespace penumbra::solver {
+
+/// Element-level results of any solve method.
+struct ElementResult {
+    std::vector<Rgb> radiosity, h_direct, h_indirect;
+};
 
 /// The sources a point can gather direct light from: emitting elements and point lights.
 GatherSources direct_sources(const Scene& scene, const std::vector<Rgb>& element_emission);
 
 /// \brief A cheap snapshot for progress: element values, and vertex values as area-weighted
 ///        means of the elements around each vertex.
-Solution snapshot_solution(const RadiosityMesh& mesh, const ShootingState& state);
+Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& result);
 
 /// \brief Packs element results and reconstructs vertex values: direct irradiance gathered at
 ///        each vertex itself (Wallace et al. 1989's vertex receivers), indirect as the
 ///        area-weighted mean of the vertex's elements, B = E + ρ H.
 Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const ElementGeometry& geo,
-                       const ShootingState& state, const VisibilityQuery& visibility,
+                       ElementResult result, const VisibilityQuery& visibility,
                        const RowSettings& settings, const Context& ctx);
 
 } // namespace penumbra::solver

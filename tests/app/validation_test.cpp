@@ -16,7 +16,10 @@ namespace {
 using test::add_material;
 using test::add_rect;
 
-app::BakeResult bake_no_render(const Scene& scene, int threads = 0) {
+// These tests validate the progressive shooting solver (issue #3); the hierarchical solver
+// has its own in hierarchical_test.cpp.
+app::BakeResult bake_no_render(Scene scene, int threads = 0) {
+    scene.solver.method = "shooting";
     app::BakeOptions options;
     options.render = false;
     return app::bake(scene, options, test::quiet_context(threads));

@@ -128,10 +128,18 @@ double auto_exposure_of(vtkDataSet* data) {
         radiosity = data->GetPointData()->GetArray("radiosity");
     if (!radiosity || radiosity->GetNumberOfComponents() != 3)
         return 1.0;
+    // Cells darker than 1e-4 of the brightest (unlit backs, round-off) would drag the
+    // log-average down and wash the picture out: they do not set the exposure.
+    double brightest = 0;
+    for (vtkIdType i = 0; i < radiosity->GetNumberOfTuples(); ++i) {
+        const double y = luminance_of(radiosity, i);
+        if (std::isfinite(y))
+            brightest = std::max(brightest, y);
+    }
     double sum_log = 0, weight = 0;
     for (vtkIdType i = 0; i < radiosity->GetNumberOfTuples(); ++i) {
         const double y = luminance_of(radiosity, i);
-        if (!(y > 0) || !std::isfinite(y))
+        if (!(y > 1e-4 * brightest) || !std::isfinite(y))
             continue;
         const double w = cells ? cell_area(data, i) : 1.0;
         sum_log += w * std::log(y);

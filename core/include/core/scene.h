@@ -63,7 +63,15 @@ struct MesherSettings {
 };
 
 struct SolverSettings {
-    double residual = 1e-3;       ///< stop when unshot power / emitted power falls below this
+    /// "hierarchical" (default), "shooting", "jacobi", "gauss_seidel" or "matrix".
+    std::string method = "hierarchical";
+    double residual = 1e-3;       ///< stop when unshot (or changing) power / emitted falls below
+    double epsilon = 1e-3;        ///< hierarchical: refine links whose estimate > ε × brightest exitance
+    /// hierarchical: "variation" (ΔF·B, the form factor's spread over the receiver times the
+    /// source radiosity) or "bf" (F·B, Hanrahan et al. 1991).
+    std::string oracle = "variation";
+    double min_area = 0;          ///< hierarchical: m², smallest element; 0 = (diagonal / 200)²
+    int max_sweeps = 500;         ///< gathering: most sweeps per solve
     bool ambient = false;         ///< add the ambient term (previews only)
     std::int64_t max_shots = 0;   ///< 0 = 50 × element count
     int visibility_rays = 16;     ///< rays per element pair that is not trivially visible

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "core/context.h"
@@ -25,7 +26,8 @@ struct PowerBalance {
 };
 
 struct SolveStats {
-    std::int64_t shots = 0;
+    std::int64_t shots = 0;   ///< shots (shooting) or sweeps (gathering, hierarchical)
+    std::uint64_t links = 0;  ///< hierarchical: links at the end
     std::uint64_t rays = 0;
     double seconds_form_factors = 0;
     double seconds_total = 0;
@@ -33,15 +35,30 @@ struct SolveStats {
     std::vector<double> residual_history; ///< relative unshot power after every N shots (N = elements)
 };
 
-/// \brief Watches a progressive solve: called with a snapshot every \p every_shots shots and
-///        once at the end (final = true, the full solution). Snapshots carry element values and
-///        vertex values averaged from the elements (no vertex gathering).
+/// \brief Watches a solve: called with a snapshot every \p every_shots shots (shooting) or
+///        sweeps (gathering, hierarchical) and once at the end (final = true). Snapshots are
+///        on the input mesh (hierarchical: the roots' pulled values), with vertex values
+///        averaged from the elements; the final call of shooting carries the full solution.
 struct SolveObserver {
     std::int64_t every_shots = 0; ///< 0 = only the final call
     std::function<void(const Solution& snapshot, std::int64_t shots, double relative_unshot,
                        bool final)>
         on_pass;
 };
+
+/// \brief A solve's output: the solution, and for hierarchical radiosity the leaf mesh it
+///        lives on (without T-vertices); otherwise the solution is on the input mesh.
+struct SolveResult {
+    std::optional<RadiosityMesh> refined_mesh;
+    Solution solution;
+};
+
+/// \brief Solves with the method of scene.solver.method ("hierarchical", "shooting",
+///        "jacobi", "gauss_seidel", "matrix").
+/// \throws ConfigError for an unknown method or a scene too large for "matrix".
+SolveResult solve(const Scene& scene, const RadiosityMesh& mesh,
+                  const VisibilityQuery& visibility, const Context& ctx,
+                  SolveStats* stats = nullptr, const SolveObserver* observer = nullptr);
 
 /// \brief Solves the radiosity of \p mesh by progressive shooting until the unshot power falls
 ///        below SolverSettings::residual of the emitted power.

@@ -1,0 +1,24 @@
+#pragma once
+
+#include "core/context.h"
+#include "core/mesh.h"
+#include "core/scene.h"
+#include "core/visibility.h"
+#include "element_rows.h"
+#include "solver/solver.h"
+
+namespace penumbra::solver {
+
+/// \brief Power balance of a gathered solution: escape estimated per element by its own rays.
+PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
+                                  const ElementGeometry& geo, const Solution& solution,
+                                  const VisibilityQuery& visibility, const RowSettings& rows,
+                                  double unconverged_fraction);
+
+/// \brief Hierarchical radiosity on the mesh's elements as roots; returns the leaf mesh and
+///        its solution.
+SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
+                               const VisibilityQuery& visibility, const Context& ctx,
+                               SolveStats* stats, const SolveObserver* observer);
+
+} // namespace penumbra::solver

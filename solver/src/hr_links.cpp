@@ -1,0 +1,244 @@
+// Link creation and refinement for hierarchical radiosity. Refinement is deterministic and
+// parallel where it can be: decisions and form factors are computed per link in parallel,
+// node subdivision happens serially in link order.
+
+#include "hr_links.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "form_factor.h"
+
+namespace penumbra::solver {
+
+namespace {
+
+enum Decision : std::uint8_t { keep = 0, split_receiver = 1, split_source = 2 };
+
+OrientedTriangle oriented(const Hierarchy& h, std::uint32_t n) { return {h.triangle[n], h.normal[n]}; }
+
+bool faces(const Hierarchy& h, std::uint32_t a, std::uint32_t b, double eps) {
+    return in_front(oriented(h, a), oriented(h, b), eps) &&
+           in_front(oriented(h, b), oriented(h, a), eps);
+}
+
+bool can_radiate(const Hierarchy& h, std::uint32_t n) {
+    return !h.emission[n].is_black() || !h.reflectance[n].is_black();
+}
+
+// Children of a twin are in mirrored order (the back winding is reversed): 0↔0, 1↔2, 3↔3.
+constexpr int k_twin_child[4] = {0, 2, 1, 3};
+
+} // namespace
+
+LinkSet::LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, const VisibilityQuery& visibility,
+                 const std::vector<PointLight>& lights, RefineSettings settings)
+    : h_(h), twin_(twin), visibility_(visibility), lights_(lights), settings_(settings) {}
+
+Link LinkSet::make_link(std::uint32_t q, std::uint32_t p) const {
+    const OrientedTriangle a = oriented(h_, q), b = oriented(h_, p);
+    const int level = quadrature_level_for(a, b, settings_.rows);
+    PairFormFactor pf =
+        triangle_form_factor(a, b, level, visibility_, settings_.offset, q, p, settings_.rows);
+    return {q, p, float(pf.f), float(pf.f_spread), std::uint8_t(pf.partial ? 1 : 0)};
+}
+
+LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
+    const Vec3 pos = lights_[l].position;
+    LightLink link{q, l, Rgb{}, 0, 0};
+    if (dot(pos - h_.triangle[q][0], h_.normal[q]) <= 0)
+        return link;
+    double e_min = 1e300, e_max = 0; // I cos θ / d² at the corners and the centroid
+    for (const Vec3& x : {h_.triangle[q][0], h_.triangle[q][1], h_.triangle[q][2], h_.centroid(q)}) {
+        const Vec3 d = pos - x;
+        const double e = std::max(0.0, dot(d, h_.normal[q])) / std::pow(dot(d, d), 1.5);
+        e_min = std::min(e_min, e);
+        e_max = std::max(e_max, e);
+    }
+    link.spread = float((e_max - e_min) * double(lights_[l].intensity.max_component()));
+    const double omega = solid_angle_triangle(pos, h_.triangle[q]);
+    Pcg32 rng = Pcg32::for_stream(RngPurpose::point_light_visibility, l, q, 1, settings_.rows.seed);
+    std::vector<Segment> segments(std::size_t(std::max(1, settings_.rows.visibility_rays)));
+    for (Segment& s : segments) {
+        Vec3 to = sample_triangle(h_.triangle[q], rng.next_double(), rng.next_double()) +
+                  h_.normal[q] * settings_.offset;
+        s = {Vec3f(pos), Vec3f(to - pos), 0.0f, 1.0f};
+    }
+    std::vector<std::uint8_t> blocked(segments.size());
+    visibility_.occluded(segments, blocked);
+    const auto open = std::count(blocked.begin(), blocked.end(), std::uint8_t(0));
+    const double v = double(open) / double(segments.size());
+    link.partial = open > 0 && std::size_t(open) < segments.size();
+    link.irradiance = lights_[l].intensity * float(omega * v / h_.area[q]);
+    return link;
+}
+
+void LinkSet::link_roots() {
+    const std::size_t r = h_.root_count;
+    const double eps = 1e-9 * h_.diagonal;
+    std::vector<std::vector<Link>> per_receiver(r);
+    parallel_for_index(r, 4, [&](std::size_t q) {
+        for (std::uint32_t p = 0; p < r; ++p) {
+            if (p == q || twin_[q] == std::int32_t(p) || !can_radiate(h_, p) ||
+                !faces(h_, std::uint32_t(q), p, eps))
+                continue;
+            Link link = make_link(std::uint32_t(q), p);
+            if (link.ff > 0)
+                per_receiver[q].push_back(link);
+        }
+    });
+    links_.clear();
+    for (auto& v : per_receiver)
+        links_.insert(links_.end(), v.begin(), v.end());
+    light_links_.clear();
+    for (std::uint32_t l = 0; l < lights_.size(); ++l) {
+        std::vector<LightLink> made(r);
+        parallel_for_index(r, 64, [&](std::size_t q) { made[q] = make_light_link(std::uint32_t(q), l); });
+        for (const LightLink& link : made)
+            if (!link.irradiance.is_black())
+                light_links_.push_back(link);
+    }
+    sort_and_index();
+}
+
+void LinkSet::subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<float>& b_range) {
+    if (!h_.is_leaf(node))
+        return;
+    // Front and back sides subdivide together so that their leaves stay twins.
+    const std::int32_t t = twin_[node];
+    for (std::uint32_t n : {node, t >= 0 ? std::uint32_t(t) : node}) {
+        if (!h_.is_leaf(n))
+            continue;
+        h_.subdivide(n);
+        const Rgb parent_value = b[n];
+        const float parent_range = b_range[n];
+        for (int c = 0; c < 4; ++c) {
+            b.push_back(parent_value);
+            b_range.push_back(parent_range);
+        }
+    }
+    twin_.resize(h_.size(), -1);
+    if (t >= 0) {
+        for (int c = 0; c < 4; ++c) {
+            std::uint32_t mine = std::uint32_t(h_.first_child[node] + c);
+            std::uint32_t theirs = std::uint32_t(h_.first_child[std::uint32_t(t)] + k_twin_child[c]);
+            twin_[mine] = std::int32_t(theirs);
+            twin_[theirs] = std::int32_t(mine);
+        }
+    }
+}
+
+bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
+    std::vector<std::uint8_t> decision(links_.size(), keep);
+    parallel_for_index(links_.size(), 256, [&](std::size_t k) {
+        const Link& link = links_[k];
+        // Hanrahan et al.'s BF oracle: the irradiance the link brings, doubled when partly
+        // occluded (its visibility estimate is the least certain part).
+        const double b_source = double(b[link.source].max_component());
+        const double estimate =
+            (settings_.oracle == Oracle::bf
+                 ? double(link.ff) * b_source
+                 : double(link.spread) * b_source + double(link.ff) * b_range[link.source]) *
+            (link.partial ? 2.0 : 1.0);
+        if (estimate <= settings_.threshold)
+            return;
+        const double aq = h_.area[link.receiver], ap = h_.area[link.source];
+        if (std::max(aq, ap) <= settings_.min_area)
+            return;
+        decision[k] = aq >= ap ? split_receiver : split_source;
+    });
+    if (std::none_of(decision.begin(), decision.end(), [](std::uint8_t d) { return d != keep; }))
+        return false;
+    for (std::size_t k = 0; k < links_.size(); ++k)
+        if (decision[k] != keep)
+            subdivide(decision[k] == split_receiver ? links_[k].receiver : links_[k].source, b,
+                      b_range);
+    std::vector<Link> next;
+    std::vector<std::size_t> fresh;
+    for (std::size_t k = 0; k < links_.size(); ++k) {
+        const Link& l = links_[k];
+        if (decision[k] == keep) {
+            next.push_back(l);
+            continue;
+        }
+        for (int c = 0; c < 4; ++c) {
+            fresh.push_back(next.size());
+            if (decision[k] == split_receiver)
+                next.push_back({std::uint32_t(h_.first_child[l.receiver] + c), l.source, 0, 0, 0});
+            else
+                next.push_back({l.receiver, std::uint32_t(h_.first_child[l.source] + c), 0, 0, 0});
+        }
+    }
+    parallel_for_index(fresh.size(), 16, [&](std::size_t f) {
+        Link& l = next[fresh[f]];
+        if (faces(h_, l.receiver, l.source, 1e-9 * h_.diagonal))
+            l = make_link(l.receiver, l.source);
+    });
+    next.erase(std::remove_if(next.begin(), next.end(), [](const Link& l) { return l.ff <= 0; }),
+               next.end());
+    links_.swap(next);
+    return true;
+}
+
+bool LinkSet::refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
+    std::vector<std::uint8_t> split(light_links_.size(), 0);
+    parallel_for_index(light_links_.size(), 256, [&](std::size_t k) {
+        const LightLink& l = light_links_[k];
+        const double e = settings_.oracle == Oracle::bf ? double(l.irradiance.max_component())
+                                                        : double(l.spread);
+        split[k] = (l.partial || e > settings_.threshold) &&
+                   h_.area[l.receiver] > settings_.min_area;
+    });
+    if (std::none_of(split.begin(), split.end(), [](std::uint8_t s) { return s != 0; }))
+        return false;
+    for (std::size_t k = 0; k < light_links_.size(); ++k)
+        if (split[k])
+            subdivide(light_links_[k].receiver, b, b_range);
+    std::vector<LightLink> next;
+    std::vector<std::size_t> fresh;
+    for (std::size_t k = 0; k < light_links_.size(); ++k) {
+        if (!split[k]) {
+            next.push_back(light_links_[k]);
+            continue;
+        }
+        for (int c = 0; c < 4; ++c) {
+            fresh.push_back(next.size());
+            next.push_back({std::uint32_t(h_.first_child[light_links_[k].receiver] + c),
+                            light_links_[k].light, Rgb{}, 0, 0});
+        }
+    }
+    parallel_for_index(fresh.size(), 16, [&](std::size_t f) {
+        LightLink& l = next[fresh[f]];
+        l = make_light_link(l.receiver, l.light);
+    });
+    next.erase(std::remove_if(next.begin(), next.end(),
+                              [](const LightLink& l) { return l.irradiance.is_black(); }),
+               next.end());
+    light_links_.swap(next);
+    return true;
+}
+
+bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range) {
+    bool changed = false;
+    while (refine_light_pass(b, b_range))
+        changed = true;
+    while (refine_pass(b, b_range))
+        changed = true;
+    sort_and_index();
+    return changed;
+}
+
+void LinkSet::sort_and_index() {
+    std::stable_sort(links_.begin(), links_.end(), [](const Link& a, const Link& b) {
+        return a.receiver != b.receiver ? a.receiver < b.receiver : a.source < b.source;
+    });
+    offsets_.assign(h_.size() + 1, 0);
+    for (const Link& l : links_)
+        ++offsets_[l.receiver + 1];
+    for (std::size_t n = 0; n < h_.size(); ++n)
+        offsets_[n + 1] += offsets_[n];
+}
+
+} // namespace penumbra::solver

@@ -1,0 +1,89 @@
+// Method dispatch and the power balance of gathered solutions.
+
+#include "solver/solver.h"
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "fixed_system.h"
+#include "hierarchical.h"
+#include "point_lights.h"
+
+namespace penumbra::solver {
+
+namespace {
+
+SolveResult solve_fixed(const Scene& scene, const RadiosityMesh& mesh,
+                        const VisibilityQuery& visibility, const Context& ctx, SolveStats* stats,
+                        const SolveObserver* observer) {
+    const std::string& method = scene.solver.method;
+    return run_in_arena(ctx, [&] {
+        ElementGeometry geo(mesh);
+        RowSettings rows;
+        rows.visibility_rays = scene.solver.visibility_rays;
+        rows.seed = ctx.seed;
+        FixedSystem system = build_fixed_system(scene, mesh, geo, visibility, rows, ctx);
+        ElementResult er = method == "matrix"
+                               ? solve_matrix(system, geo, ctx, stats)
+                               : solve_gathering(system, geo, scene.solver,
+                                                 method == "gauss_seidel", ctx, stats);
+        SolveResult result;
+        result.solution = make_solution(scene, mesh, geo, std::move(er), visibility, rows, ctx);
+        if (observer && observer->on_pass)
+            observer->on_pass(result.solution, stats ? stats->shots : 0, 0.0, true);
+        return result;
+    });
+}
+
+} // namespace
+
+PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
+                                  const ElementGeometry& geo, const Solution& solution,
+                                  const VisibilityQuery& visibility, const RowSettings& rows,
+                                  double unconverged_fraction) {
+    PowerBalance pb;
+    RowSettings escape_rows = rows;
+    escape_rows.escape_rays = 16; // many leaves: their sum averages the noise out
+    std::vector<double> escape(mesh.element_count(), 0.0);
+    parallel_for_index(mesh.element_count(), 64, [&](std::size_t e) {
+        if (!solution.radiosity[e].is_black())
+            escape[e] = escape_fraction(geo, visibility, std::uint32_t(e), escape_rows);
+    });
+    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+        const Patch& p = mesh.patch_of(std::uint32_t(e));
+        pb.emitted += RgbD(p.emission) * geo.area[e];
+        pb.escaped += RgbD(solution.radiosity[e]) * (geo.area[e] * escape[e]);
+        RgbD h = RgbD(solution.irradiance_direct[e]) + RgbD(solution.irradiance_indirect[e]);
+        RgbD a = RgbD(1, 1, 1) - RgbD(p.reflectance);
+        pb.absorbed += RgbD(h.r * a.r, h.g * a.g, h.b * a.b) * geo.area[e];
+    }
+    for (std::size_t l = 0; l < scene.point_lights.size(); ++l) {
+        const RgbD power = RgbD(scene.point_lights[l].intensity) * (4.0 * k_pi);
+        pb.emitted += power;
+        pb.escaped += power * light_escape_fraction(geo, visibility, scene.point_lights[l].position,
+                                                    l, rows.seed);
+    }
+    pb.residual = pb.emitted * unconverged_fraction;
+    return pb;
+}
+
+SolveResult solve(const Scene& scene, const RadiosityMesh& mesh,
+                  const VisibilityQuery& visibility, const Context& ctx, SolveStats* stats,
+                  const SolveObserver* observer) {
+    const std::string& method = scene.solver.method;
+    if (method == "hierarchical")
+        return run_in_arena(ctx, [&] {
+            return solve_hierarchical(scene, mesh, visibility, ctx, stats, observer);
+        });
+    if (method == "shooting") {
+        SolveResult result;
+        result.solution = solve_shooting(scene, mesh, visibility, ctx, stats, observer);
+        return result;
+    }
+    if (method == "jacobi" || method == "gauss_seidel" || method == "matrix")
+        return solve_fixed(scene, mesh, visibility, ctx, stats, observer);
+    throw ConfigError(fmt::format("unknown solver method '{}' (known: hierarchical, shooting, "
+                                  "jacobi, gauss_seidel, matrix)",
+                                  method));
+}
+
+} // namespace penumbra::solver

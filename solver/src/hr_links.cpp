@@ -10,6 +10,7 @@
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "form_factor.h"
+#include "point_lights.h"
 
 namespace penumbra::solver {
 
@@ -60,17 +61,10 @@ LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
     link.spread = float((e_max - e_min) * double(lights_[l].intensity.max_component()));
     const double omega = solid_angle_triangle(pos, h_.triangle[q]);
     Pcg32 rng = Pcg32::for_stream(RngPurpose::point_light_visibility, l, q, 1, settings_.rows.seed);
-    std::vector<Segment> segments(std::size_t(std::max(1, settings_.rows.visibility_rays)));
-    for (Segment& s : segments) {
-        Vec3 to = sample_triangle(h_.triangle[q], rng.next_double(), rng.next_double()) +
-                  h_.normal[q] * settings_.offset;
-        s = {Vec3f(pos), Vec3f(to - pos), 0.0f, 1.0f};
-    }
-    std::vector<std::uint8_t> blocked(segments.size());
-    visibility_.occluded(segments, blocked);
-    const auto open = std::count(blocked.begin(), blocked.end(), std::uint8_t(0));
-    const double v = double(open) / double(segments.size());
-    link.partial = open > 0 && std::size_t(open) < segments.size();
+    const int rays = std::max(1, settings_.rows.visibility_rays);
+    const int open = light_rays_open(pos, oriented(h_, q), settings_.offset, rays, visibility_, rng);
+    const double v = double(open) / double(rays);
+    link.partial = open > 0 && open < rays;
     link.irradiance = lights_[l].intensity * float(omega * v / h_.area[q]);
     return link;
 }

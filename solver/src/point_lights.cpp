@@ -17,19 +17,25 @@ double visible_fraction(const ElementGeometry& geo, const VisibilityQuery& visib
                         const RowSettings& settings) {
     Pcg32 rng = Pcg32::for_stream(RngPurpose::point_light_visibility, light_id, j, 0,
                                   settings.seed);
-    std::vector<Segment> segments(std::size_t(std::max(1, settings.visibility_rays)));
+    const int rays = std::max(1, settings.visibility_rays);
+    return double(light_rays_open(light, geo.oriented(j), geo.offset, rays, visibility, rng)) /
+           double(rays);
+}
+
+} // namespace
+
+int light_rays_open(const Vec3& light, const OrientedTriangle& target, double offset, int rays,
+                    const VisibilityQuery& visibility, Pcg32& rng) {
+    std::vector<Segment> segments(std::size_t(std::max(1, rays)));
     for (Segment& seg : segments) {
-        Vec3 to = sample_triangle(geo.triangle[j], rng.next_double(), rng.next_double()) +
-                  geo.normal[j] * geo.offset;
+        Vec3 to = sample_triangle(target.v, rng.next_double(), rng.next_double()) +
+                  target.n * offset;
         seg = {Vec3f(light), Vec3f(to - light), 0.0f, 1.0f};
     }
     std::vector<std::uint8_t> blocked(segments.size());
     visibility.occluded(segments, blocked);
-    auto open = std::count(blocked.begin(), blocked.end(), std::uint8_t(0));
-    return double(open) / double(segments.size());
+    return int(std::count(blocked.begin(), blocked.end(), std::uint8_t(0)));
 }
-
-} // namespace
 
 double light_escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
                              const Vec3& light, std::size_t light_id, std::uint64_t seed) {

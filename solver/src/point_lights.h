@@ -3,12 +3,18 @@
 #include <vector>
 
 #include "core/context.h"
+#include "core/rng.h"
 #include "core/scene.h"
 #include "core/visibility.h"
 #include "element_rows.h"
 #include "shooting_state.h"
 
 namespace penumbra::solver {
+
+/// \brief Casts \p rays segments from \p light to random points of \p target (lifted by
+///        \p offset along its normal) drawn from \p rng; returns how many are unblocked.
+int light_rays_open(const Vec3& light, const OrientedTriangle& target, double offset, int rays,
+                    const VisibilityQuery& visibility, Pcg32& rng);
 
 /// \brief Fraction of a point light's power that leaves the scene, from its own rays.
 double light_escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,

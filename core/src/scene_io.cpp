@@ -269,6 +269,12 @@ void validate_settings(const Scene& scene) {
           "mesher.max_edge_length", "must be >= 0 (0 = automatic)");
     check(std::isfinite(mesher.planarity_tolerance) && mesher.planarity_tolerance >= 0, scene,
           "mesher.planarity_tolerance", "must be >= 0");
+    check(!mesher.contact_tolerance ||
+              (std::isfinite(*mesher.contact_tolerance) && *mesher.contact_tolerance >= 0),
+          scene, "mesher.contact_tolerance", "must be >= 0");
+    check(mesher.element_budget >= 0, scene, "mesher.element_budget", "must be >= 0 (0 = no limit)");
+    check(mesher.discontinuity.max_order >= 0 && mesher.discontinuity.max_order <= 2, scene,
+          "mesher.discontinuity.max_order", "must be 0, 1 or 2");
     const SolverSettings& solver = scene.solver;
     check(solver.residual > 0 && solver.residual < 1, scene, "solver.residual",
           fmt::format("must be in (0, 1), got {}", solver.residual));

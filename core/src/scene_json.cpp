@@ -349,13 +349,32 @@ void parse_image(const Field& field, Camera& camera) {
         camera.exposure = field.child("exposure").number();
 }
 
+DiscontinuitySettings parse_discontinuity(const Field& field) {
+    field.expect_keys({"enabled", "max_order"});
+    DiscontinuitySettings d;
+    if (field.has("enabled"))
+        d.enabled = field.child("enabled").boolean();
+    if (field.has("max_order"))
+        d.max_order = int(field.child("max_order").integer(0, 2));
+    return d;
+}
+
 MesherSettings parse_mesher(const Field& field, double metres_per_unit) {
-    field.expect_keys({"max_edge_length", "planarity_tolerance"});
+    field.expect_keys({"max_edge_length", "planarity_tolerance", "split_contacts",
+                       "contact_tolerance", "element_budget", "discontinuity"});
     MesherSettings mesher;
     if (field.has("max_edge_length"))
         mesher.max_edge_length = field.child("max_edge_length").number() * metres_per_unit;
     if (field.has("planarity_tolerance"))
         mesher.planarity_tolerance = field.child("planarity_tolerance").number();
+    if (field.has("split_contacts"))
+        mesher.split_contacts = field.child("split_contacts").boolean();
+    if (field.has("contact_tolerance"))
+        mesher.contact_tolerance = field.child("contact_tolerance").number() * metres_per_unit;
+    if (field.has("element_budget"))
+        mesher.element_budget = field.child("element_budget").integer(0, std::int64_t(1) << 40);
+    if (field.has("discontinuity"))
+        mesher.discontinuity = parse_discontinuity(field.child("discontinuity"));
     return mesher;
 }
 

@@ -1,130 +1,176 @@
-// Mesher v1: scene polygons → patches (one per side of each planar surface) → conforming
-// triangle elements. Non-planar polygons are fan-triangulated from their first vertex, as
-// path tracers do, each fan triangle becoming a planar surface of its own.
+// Mesher v2 (issue #5): scene polygons → planar surfaces (near-contacts closed) → contact
+// lines, covers and hidden regions → discontinuity segments of every source → one CGAL
+// constrained Delaunay triangulation per surface, refined to the size and angle bound →
+// patches (one per side) with vertices split along contact lines. If the element count
+// exceeds the budget, the size bound grows and the refinement runs again.
 
 #include "mesher/mesher.h"
 
+#include <chrono>
 #include <cmath>
 
+#include "contacts.h"
 #include "core/error.h"
-#include "polygon_mesh.h"
+#include "core/parallel.h"
+#include "discontinuity.h"
+#include "mesh_assembly.h"
+#include "surface_bvh.h"
+#include "surface_regions.h"
+#include "surfaces.h"
 
 namespace penumbra::mesher {
 
 namespace {
 
-struct PlanarPiece {
-    std::vector<Vec3> outline;
-    Vec3 normal;
-};
-
-double polygon_size(const std::vector<Vec3>& p) {
-    BBox box;
-    for (const Vec3& v : p)
-        box.extend(v);
-    return box.diagonal();
+MeshParams resolve_params(const Scene& scene) {
+    const MesherSettings& m = scene.mesher;
+    MeshParams p;
+    p.diagonal = scene.bounds().diagonal();
+    p.max_edge = m.max_edge_length > 0 ? m.max_edge_length : p.diagonal / 20.0;
+    if (!(p.max_edge > 0) || !std::isfinite(p.max_edge))
+        throw InputError(scene.file, "mesher.max_edge_length", "scene has no extent to mesh");
+    p.contact_tol = m.contact_tolerance.value_or(std::min(0.002, 1e-3 * p.diagonal));
+    p.snap = 2e-7 * p.diagonal;
+    p.nudge = 1e-6 * p.diagonal;
+    p.min_edge = std::max(p.contact_tol, 2e-3 * p.max_edge);
+    p.merge = std::max(p.snap, 0.5 * p.min_edge);
+    p.split_contacts = m.split_contacts;
+    p.max_order = m.discontinuity.enabled ? m.discontinuity.max_order : -1;
+    p.budget = m.element_budget;
+    return p;
 }
 
-std::vector<PlanarPiece> planar_pieces(const Polygon& poly, double tolerance) {
-    const Vec3 n = normalize(newell_normal(poly.vertices));
-    const double size = polygon_size(poly.vertices);
-    double deviation = 0;
-    for (const Vec3& v : poly.vertices)
-        deviation = std::max(deviation, std::abs(dot(v - poly.vertices[0], n)));
-    if (deviation <= tolerance * size)
-        return {{poly.vertices, n}};
-    std::vector<PlanarPiece> fan;
-    for (std::size_t i = 1; i + 1 < poly.vertices.size(); ++i) {
-        std::vector<Vec3> tri{poly.vertices[0], poly.vertices[i], poly.vertices[i + 1]};
-        Vec3 tn = cross(tri[1] - tri[0], tri[2] - tri[0]);
-        if (length(tn) > 1e-12 * size * size)
-            fan.push_back({tri, normalize(tn)});
-    }
-    return fan;
+// max_edge_length is the element size: no edge is longer than the diagonal of a square of
+// that side, as in mesher v1's structured grids, so element counts stay comparable.
+RefineSettings refine_settings(const Surface& s, const PreparedSurface& prepared,
+                               const MeshParams& p, double max_edge) {
+    RefineSettings r;
+    r.max_edge = std::sqrt(2.0) * max_edge;
+    r.near_factor = 0.5;
+    r.min_edge = std::min(p.min_edge, 0.5 * max_edge);
+    r.snap = p.snap;
+    r.nudge = p.nudge;
+    r.two_sided = s.two_sided;
+    const double expected = s.area / (0.3 * r.max_edge * r.max_edge);
+    r.max_steps = std::size_t(10 * expected) + 200 * prepared.extra.size() + 10000;
+    return r;
 }
 
-double triangle_area(const RadiosityMesh& mesh, const std::array<std::uint32_t, 3>& t) {
-    return 0.5 * length(cross(mesh.vertex(t[1]) - mesh.vertex(t[0]),
-                              mesh.vertex(t[2]) - mesh.vertex(t[0])));
+std::vector<SurfaceTriangulation> triangulate_all(const std::vector<Surface>& surfaces,
+                                                  const std::vector<PreparedSurface>& prepared,
+                                                  const MeshParams& params, double max_edge,
+                                                  const Context& ctx) {
+    std::vector<SurfaceTriangulation> out(surfaces.size());
+    run_in_arena(ctx, [&] {
+        parallel_for_index(surfaces.size(), 1, [&](std::size_t i) {
+            const RefineSettings rs = refine_settings(surfaces[i], prepared[i], params, max_edge);
+            try {
+                out[i] = prepared[i].triangulator->refine(prepared[i].extra, rs);
+            } catch (const ExternalError& e) {
+                throw InputError("", "", fmt::format("cannot triangulate surface {}: {}",
+                                                     surfaces[i].name, e.what()));
+            }
+        });
+    });
+    for (std::size_t i = 0; i < surfaces.size(); ++i)
+        if (out[i].face_count == 0)
+            ctx.warn("mesh: surface {} is thinner than {:.3g} m everywhere; it gets no elements",
+                     surfaces[i].name, params.snap);
+    for (std::size_t i = 0; i < surfaces.size(); ++i)
+        if (out[i].capped)
+            ctx.warn("mesh: surface {}: quality refinement stopped after {} insertions "
+                     "(constraints nearly touch); some elements keep small angles",
+                     surfaces[i].name, refine_settings(surfaces[i], prepared[i], params,
+                                                       max_edge).max_steps);
+    return out;
 }
 
-// Appends one side of a surface as a patch; returns the index of its first element.
-std::size_t append_patch(RadiosityMesh& mesh, const SurfaceMesh& sm, const Patch& patch) {
-    const auto patch_id = std::uint32_t(mesh.patches.size());
-    mesh.patches.push_back(patch);
-    const auto base = std::uint32_t(mesh.positions.size());
-    for (const Vec3& p : sm.points) {
-        mesh.positions.push_back(Vec3f(p));
-        mesh.vertex_patch.push_back(patch_id);
-    }
-    const std::size_t first = mesh.triangles.size();
-    for (const auto& t : sm.triangles) {
-        std::array<std::uint32_t, 3> tri = patch.back
-                                               ? std::array<std::uint32_t, 3>{t[0], t[2], t[1]}
-                                               : t;
-        for (auto& v : tri)
-            v += base;
-        mesh.triangles.push_back(tri);
-        mesh.element_patch.push_back(patch_id);
-        mesh.element_twin.push_back(-1);
-        mesh.element_area.push_back(triangle_area(mesh, tri));
-        mesh.element_level.push_back(0);
-    }
-    return first;
+std::size_t element_count(const std::vector<SurfaceTriangulation>& tris) {
+    std::size_t n = 0;
+    for (const SurfaceTriangulation& t : tris)
+        n += t.sides[0].triangles.size() + t.sides[1].triangles.size();
+    return n;
 }
 
-void add_surface(RadiosityMesh& mesh, const Scene& scene, std::uint32_t polygon_index,
-                 std::uint32_t surface_id, const PlanarPiece& piece, const SurfaceMesh& sm) {
-    const Polygon& poly = scene.polygons[polygon_index];
-    const Material& mat = scene.materials[poly.material];
-    Patch front;
-    front.polygon = polygon_index;
-    front.surface = surface_id;
-    front.material = poly.material;
-    front.normal = piece.normal;
-    front.reflectance = mat.reflectance;
-    front.emission = mat.emission * float(k_pi);
-    const std::size_t first_front = append_patch(mesh, sm, front);
-    for (std::size_t e = first_front; e < mesh.triangles.size(); ++e)
-        mesh.geometry_elements.push_back(std::uint32_t(e));
-    if (!mat.two_sided)
-        return;
-    Patch back = front;
-    back.back = true;
-    back.normal = -piece.normal;
-    back.emission = mat.emission_two_sided ? front.emission : Rgb{};
-    const std::size_t first_back = append_patch(mesh, sm, back);
-    for (std::size_t i = 0; i < sm.triangles.size(); ++i) {
-        mesh.element_twin[first_front + i] = std::int32_t(first_back + i);
-        mesh.element_twin[first_back + i] = std::int32_t(first_front + i);
+// Refines every surface; grows the size bound while the element budget is exceeded.
+std::vector<SurfaceTriangulation> refine_within_budget(const std::vector<Surface>& surfaces,
+                                                       const std::vector<PreparedSurface>& prepared,
+                                                       const MeshParams& params, double& max_edge,
+                                                       const Context& ctx) {
+    max_edge = params.max_edge;
+    std::vector<SurfaceTriangulation> tris;
+    for (int attempt = 0;; ++attempt) {
+        tris = triangulate_all(surfaces, prepared, params, max_edge, ctx);
+        const std::size_t n = element_count(tris);
+        if (params.budget <= 0 || n <= std::size_t(params.budget))
+            return tris;
+        if (attempt == 3) {
+            ctx.warn("mesh: {} elements exceed the budget of {} (mesher.element_budget) even "
+                     "with elements of {:.4g} m; keeping them",
+                     n, params.budget, max_edge);
+            return tris;
+        }
+        const double grow = std::sqrt(double(n) / double(params.budget)) * 1.05;
+        ctx.warn("mesh: {} elements exceed the budget of {} (mesher.element_budget); "
+                 "remeshing with elements of {:.4g} m instead of {:.4g} m",
+                 n, params.budget, max_edge * grow, max_edge);
+        max_edge *= grow;
     }
+}
+
+void record_discontinuities(RadiosityMesh& mesh, const std::vector<Surface>& surfaces,
+                            const std::vector<std::vector<ReceiverSegment>>& discontinuities) {
+    for (std::size_t s = 0; s < surfaces.size(); ++s)
+        for (const ReceiverSegment& d : discontinuities[s])
+            mesh.discontinuities.push_back({surfaces[s].to_3d(d.segment.a),
+                                            surfaces[s].to_3d(d.segment.b),
+                                            std::uint32_t(s), d.source, d.order});
+}
+
+void log_summary(const Context& ctx, const Scene& scene, const RadiosityMesh& mesh,
+                 const std::vector<SurfaceContacts>& contacts, double max_edge, double seconds) {
+    std::size_t cuts = 0;
+    for (const SurfaceContacts& c : contacts)
+        cuts += c.cuts.size() + c.covers.size();
+    double hidden = 0;
+    for (const SurfaceInfo& s : mesh.surfaces)
+        hidden += s.hidden_front_m2 + s.hidden_back_m2;
+    std::size_t by_order[3] = {0, 0, 0};
+    for (const DiscontinuitySegment& d : mesh.discontinuities)
+        ++by_order[std::clamp(d.order, 0, 2)];
+    ctx.info("mesh: {} polygons -> {} surfaces, {} contacts, {:.4g} m2 hidden, discontinuities "
+             "D0/D1/D2 {}/{}/{}, {} patches, {} elements, {} vertices (max edge {:.4g} m, "
+             "{:.2f} s)",
+             scene.polygons.size(), mesh.surfaces.size(), cuts, hidden, by_order[0],
+             by_order[1], by_order[2], mesh.patches.size(), mesh.element_count(),
+             mesh.vertex_count(), max_edge, seconds);
 }
 
 } // namespace
 
 RadiosityMesh build_mesh(const Scene& scene, const Context& ctx) {
+    const auto start = std::chrono::steady_clock::now();
+    const MeshParams params = resolve_params(scene);
+    const std::vector<Surface> surfaces = build_surfaces(scene, params, ctx);
+    const SurfaceBvh bvh(surfaces);
+    const std::vector<SurfaceContacts> contacts = find_contacts(surfaces, bvh, params, ctx);
+    const std::vector<std::vector<ReceiverSegment>> discontinuities =
+        find_discontinuities(scene, surfaces, bvh, params, ctx);
+    const std::vector<PreparedSurface> prepared =
+        prepare_surfaces(scene, surfaces, bvh, contacts, discontinuities, params, ctx);
+    double max_edge = 0;
+    const std::vector<SurfaceTriangulation> tris =
+        refine_within_budget(surfaces, prepared, params, max_edge, ctx);
+
     RadiosityMesh mesh;
-    mesh.scene_diagonal = scene.bounds().diagonal();
-    const double max_edge = scene.mesher.max_edge_length > 0 ? scene.mesher.max_edge_length
-                                                              : mesh.scene_diagonal / 20.0;
-    if (!(max_edge > 0))
-        throw InputError(scene.file, "mesher.max_edge_length", "scene has no extent to mesh");
-    std::uint32_t surface_id = 0;
-    for (std::uint32_t pi = 0; pi < scene.polygons.size(); ++pi) {
-        const Polygon& poly = scene.polygons[pi];
-        for (const PlanarPiece& piece : planar_pieces(poly, scene.mesher.planarity_tolerance)) {
-            SurfaceMesh sm = mesh_planar_polygon(piece.outline, piece.normal, max_edge);
-            if (sm.triangles.empty())
-                throw InputError(poly.source, "",
-                                 "cannot triangulate polygon '" + poly.name +
-                                     "': it intersects itself or has collinear vertices only");
-            add_surface(mesh, scene, pi, surface_id++, piece, sm);
-        }
-    }
-    ctx.info("mesh: {} polygons -> {} surfaces, {} patches, {} elements, {} vertices "
-             "(max edge {:.4g} m)",
-             scene.polygons.size(), surface_id, mesh.patches.size(), mesh.element_count(),
-             mesh.vertex_count(), max_edge);
+    mesh.scene_diagonal = params.diagonal;
+    for (std::size_t i = 0; i < surfaces.size(); ++i)
+        append_surface(mesh, scene, surfaces[i], tris[i]);
+    record_discontinuities(mesh, surfaces, discontinuities);
+    check_patches(mesh);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    log_summary(ctx, scene, mesh, contacts, max_edge, seconds);
     return mesh;
 }
 

@@ -30,8 +30,20 @@ struct Patch {
 struct DiscontinuitySegment {
     Vec3 a, b;                  ///< endpoints, metres
     std::uint32_t surface = 0;  ///< the receiving planar surface
-    std::int32_t source = -1;   ///< the emitting polygon (index into Scene::polygons), -1 = sun
+    /// The source: ≥ 0 the emitting polygon (index into Scene::polygons), -1 the sun,
+    /// ≤ -2 the point light Scene::point_lights[-2 - source].
+    std::int32_t source = -1;
     int order = 0;
+};
+
+/// \brief One planar surface as the mesher saw it: a planar input polygon, or one fan
+///        triangle of a non-planar one. Hidden parts (under or inside other geometry, or
+///        covered by a coincident surface) get no elements; their area is kept here.
+struct SurfaceInfo {
+    std::uint32_t polygon = 0;    ///< index into Scene::polygons
+    double area_m2 = 0;           ///< area of the surface (one side)
+    double hidden_front_m2 = 0;   ///< area of the front side left without elements
+    double hidden_back_m2 = 0;    ///< same for the back side (0 for one-sided materials)
 };
 
 /// \brief Conforming triangle mesh of all patches. An element is one triangle of one patch,
@@ -50,6 +62,8 @@ struct RadiosityMesh {
     double scene_diagonal = 0; ///< metres
     /// Shadow boundaries inserted as element edges (empty without discontinuity meshing).
     std::vector<DiscontinuitySegment> discontinuities;
+    /// Per planar surface id (Patch::surface).
+    std::vector<SurfaceInfo> surfaces;
 
     std::size_t element_count() const { return triangles.size(); }
     std::size_t vertex_count() const { return positions.size(); }

@@ -57,9 +57,22 @@ struct Camera {
     double exposure = 0.0;      ///< 0 = automatic; else multiplier on radiance before sRGB
 };
 
+/// \brief Discontinuity meshing (issue #5): shadow boundaries of emissive polygons and point
+///        lights inserted as element edges.
+struct DiscontinuitySettings {
+    bool enabled = true;
+    int max_order = 2; ///< highest order inserted: 0 = D0 only, 1 = D0 and D1, 2 = D0 to D2
+};
+
 struct MesherSettings {
     double max_edge_length = 0.0; ///< metres; 0 = scene diagonal / 20
     double planarity_tolerance = 1e-4; ///< relative to the polygon's size
+    /// Split surfaces where others touch or cut them, close near-contacts and drop hidden parts.
+    bool split_contacts = true;
+    /// Metres; gaps up to this count as contacts. Unset = min(2 mm, 1e-3 × scene diagonal).
+    std::optional<double> contact_tolerance;
+    std::int64_t element_budget = 200000; ///< most elements (both sides); 0 = no limit
+    DiscontinuitySettings discontinuity;
 };
 
 struct SolverSettings {

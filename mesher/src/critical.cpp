@@ -1,0 +1,232 @@
+// Enumeration of VE and EV critical wedges. A blocker edge generates a VE event with a source
+// vertex only if the faces sharing the edge all lie on one side of the wedge's plane (the edge
+// is a silhouette seen from the vertex); a blocker vertex generates an EV event with a source
+// edge only if its outline neighbours all lie on one side. Features that no sample line
+// reaches from the source feature unoccluded are skipped (lights in other rooms).
+
+#include "critical.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/parallel.h"
+
+namespace penumbra::mesher {
+
+std::vector<Source> collect_sources(const Scene& scene, const std::vector<Surface>& surfaces) {
+    std::vector<Source> out;
+    for (const Surface& s : surfaces) {
+        for (int side = 0; side < 2; ++side) {
+            if (!(side == 0 ? s.emits_front : s.emits_back))
+                continue;
+            Source src;
+            src.id = std::int32_t(s.polygon);
+            src.surface = std::int32_t(s.id);
+            src.vertices = s.outline;
+            src.normal = side == 0 ? s.normal : -s.normal;
+            src.offset = side == 0 ? s.offset : -s.offset;
+            out.push_back(std::move(src));
+        }
+    }
+    for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
+        Source src;
+        src.id = -2 - std::int32_t(i);
+        src.vertices = {scene.point_lights[i].position};
+        out.push_back(std::move(src));
+    }
+    return out;
+}
+
+namespace {
+
+bool parallel(const Vec3& a, const Vec3& b) {
+    return length(cross(normalize(a), normalize(b))) < 1e-6;
+}
+
+// All points strictly on one side of the plane (normal m through q), ignoring points on it.
+bool one_side(const Vec3& m, const Vec3& q, const std::vector<Vec3>& points, double eps) {
+    int sign = 0;
+    for (const Vec3& p : points) {
+        const double d = dot(m, p - q);
+        const int s = d > eps ? 1 : (d < -eps ? -1 : 0);
+        if (s == 0)
+            continue;
+        if (sign != 0 && s != sign)
+            return false;
+        sign = s;
+    }
+    return true;
+}
+
+// Whether some of up to five points on [a, b] sees \p target (skipping \p skip).
+bool sees(const SurfaceBvh& bvh, const Vec3& a, const Vec3& b, const Vec3& target,
+          const std::vector<std::uint32_t>& skip) {
+    for (double u : {0.5, 0.02, 0.98, 0.25, 0.75}) {
+        const Vec3 p = a + (b - a) * u;
+        if (!bvh.occluded(p, target - p, 1e-6, 1.0 - 1e-6, skip))
+            return true;
+    }
+    return false;
+}
+
+// Bounds the wedge: its apex, the near points and both boundary rays out to \p reach.
+void bound_wedge(Event& ev, const Vec3& base1, const Vec3& r1, const Vec3& base2, const Vec3& r2,
+                 double reach) {
+    ev.box.extend(ev.apex);
+    ev.box.extend(base1);
+    ev.box.extend(base2);
+    ev.box.extend(base1 + normalize(r1) * reach);
+    ev.box.extend(base2 + normalize(r2) * reach);
+}
+
+// VE wedge through source vertex v and the edge [a, b]; false if degenerate.
+bool vertex_edge_wedge(Event& ev, const Vec3& v, const Vec3& a, const Vec3& b, double reach) {
+    const Vec3 n = cross(a - v, b - v);
+    if (length(n) <= 1e-12 * dot(a - v, a - v) + 1e-300)
+        return false;
+    ev.normal = normalize(n);
+    ev.apex = v;
+    ev.near_a = a;
+    ev.near_b = b;
+    Vec3 m1 = cross(ev.normal, a - v), m2 = cross(ev.normal, b - v), m3 = cross(ev.normal, b - a);
+    if (dot(m1, b - v) < 0)
+        m1 = -m1;
+    if (dot(m2, a - v) < 0)
+        m2 = -m2;
+    if (dot(m3, v - a) > 0)
+        m3 = -m3;
+    ev.bounds = {{m1, v}, {m2, v}, {m3, a}};
+    bound_wedge(ev, a, a - v, b, b - v, reach);
+    return true;
+}
+
+// EV wedge through the source edge [a, b] and blocker vertex w; false if degenerate.
+bool edge_vertex_wedge(Event& ev, const Vec3& a, const Vec3& b, const Vec3& w, double reach) {
+    const Vec3 r1 = w - a, r2 = w - b;
+    const Vec3 n = cross(r1, r2);
+    if (length(n) <= 1e-12 * dot(r1, r1) + 1e-300)
+        return false;
+    ev.normal = normalize(n);
+    ev.apex = w;
+    Vec3 m1 = cross(ev.normal, r1), m2 = cross(ev.normal, r2);
+    if (dot(m1, r2) < 0)
+        m1 = -m1;
+    if (dot(m2, r1) < 0)
+        m2 = -m2;
+    ev.bounds = {{m1, w}, {m2, w}};
+    bound_wedge(ev, w, r1, w, r2, reach);
+    return true;
+}
+
+std::vector<std::uint32_t> with_source(std::vector<std::uint32_t> skip, const Source& src) {
+    if (src.surface >= 0)
+        skip.push_back(std::uint32_t(src.surface));
+    return skip;
+}
+
+// The part of [a, b] in front of the source; false if none.
+bool clip_in_front(const Source& src, Vec3& a, Vec3& b, double eps) {
+    if (src.surface < 0)
+        return true;
+    const double da = dot(src.normal, a) - src.offset, db = dot(src.normal, b) - src.offset;
+    if (da <= eps && db <= eps)
+        return false;
+    if (da <= eps)
+        a = a + (b - a) * ((eps - da) / (db - da));
+    else if (db <= eps)
+        b = b + (a - b) * ((eps - db) / (da - db));
+    return true;
+}
+
+void vertex_edge_events(const Source& src, std::uint32_t si, const Features& features,
+                        std::uint32_t ei, const SurfaceBvh& bvh, const MeshParams& params,
+                        std::vector<Event>& out) {
+    const FeatureEdge& edge = features.edges[ei];
+    if (src.surface >= 0 && std::find(edge.surfaces.begin(), edge.surfaces.end(),
+                                      std::uint32_t(src.surface)) != edge.surfaces.end())
+        return;
+    Vec3 a = edge.a, b = edge.b;
+    if (!clip_in_front(src, a, b, params.snap))
+        return;
+    const std::vector<std::uint32_t> skip = with_source(edge.surfaces, src);
+    const std::size_t n = src.vertices.size();
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec3& v = src.vertices[k];
+        const Vec3 m = cross(a - v, b - v);
+        if (!one_side(m, a, edge.wings, 1e-9 * length(m) * params.diagonal) ||
+            !sees(bvh, a, b, v, skip))
+            continue;
+        Event ev;
+        ev.kind = EventKind::vertex_edge;
+        ev.source = si;
+        ev.feature = ei;
+        ev.source_k = std::uint32_t(k);
+        ev.order = src.surface < 0 ? 0
+                   : (parallel(src.vertices[(k + 1) % n] - v, b - a) ||
+                      parallel(src.vertices[(k + n - 1) % n] - v, b - a))
+                       ? 1
+                       : 2;
+        if (vertex_edge_wedge(ev, v, a, b, 2 * params.diagonal))
+            out.push_back(std::move(ev));
+    }
+}
+
+void edge_vertex_events(const Source& src, std::uint32_t si, const Features& features,
+                        std::uint32_t vi, const SurfaceBvh& bvh, const MeshParams& params,
+                        std::vector<Event>& out) {
+    const FeatureVertex& vertex = features.vertices[vi];
+    const Vec3& w = vertex.p;
+    if (src.surface < 0 || !src.in_front(w, params.snap))
+        return;
+    const std::vector<std::uint32_t> skip = with_source(vertex.surfaces, src);
+    const std::size_t n = src.vertices.size();
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec3& a = src.vertices[k];
+        const Vec3& b = src.vertices[(k + 1) % n];
+        const Vec3 m = cross(b - a, w - a);
+        if (!one_side(m, w, vertex.neighbours, 1e-9 * length(m) * params.diagonal) ||
+            !sees(bvh, a, b, w, skip))
+            continue;
+        Event ev;
+        ev.kind = EventKind::edge_vertex;
+        ev.source = si;
+        ev.feature = vi;
+        ev.source_k = std::uint32_t(k);
+        ev.order = 2;
+        for (const Vec3& nb : vertex.neighbours)
+            if (length(nb - w) > 0 && parallel(nb - w, b - a))
+                ev.order = 1;
+        if (edge_vertex_wedge(ev, a, b, w, 2 * params.diagonal))
+            out.push_back(std::move(ev));
+    }
+}
+
+} // namespace
+
+std::vector<Event> critical_events(const std::vector<Source>& sources, const Features& features,
+                                   const SurfaceBvh& bvh, const MeshParams& params,
+                                   const Context& ctx) {
+    const std::size_t ne = features.edges.size(), nv = features.vertices.size();
+    const std::size_t per_source = ne + nv;
+    std::vector<std::vector<Event>> chunks(sources.size() * per_source);
+    run_in_arena(ctx, [&] {
+        parallel_for_index(chunks.size(), 64, [&](std::size_t i) {
+            const auto si = std::uint32_t(i / per_source);
+            const std::size_t f = i % per_source;
+            if (f < ne)
+                vertex_edge_events(sources[si], si, features, std::uint32_t(f), bvh, params,
+                                   chunks[i]);
+            else
+                edge_vertex_events(sources[si], si, features, std::uint32_t(f - ne), bvh,
+                                   params, chunks[i]);
+        });
+    });
+    std::vector<Event> out;
+    for (auto& c : chunks)
+        for (Event& e : c)
+            out.push_back(std::move(e));
+    return out;
+}
+
+} // namespace penumbra::mesher

@@ -1,0 +1,61 @@
+#pragma once
+// Critical surfaces of the visibility of a source (Heckbert 1992; Lischinski, Tampieri &
+// Greenberg 1992): vertex–edge (VE) wedges through a source vertex and a blocker edge, and
+// edge–vertex (EV) wedges through a source edge and a blocker vertex. Edge–edge–edge events
+// (quadric critical surfaces) are not generated.
+
+#include <cstdint>
+#include <vector>
+
+#include "core/context.h"
+#include "core/scene.h"
+#include "scene_features.h"
+#include "surface_bvh.h"
+#include "surfaces.h"
+
+namespace penumbra::mesher {
+
+/// A light source as the discontinuity mesher sees it: a polygon emitting to one side, or a
+/// point.
+struct Source {
+    std::int32_t id = -1;      ///< DiscontinuitySegment::source
+    std::int32_t surface = -1; ///< the emitting surface, -1 for a point light
+    std::vector<Vec3> vertices;
+    Vec3 normal;     ///< of the emitting side
+    double offset = 0; ///< dot(normal, p) on the source plane
+    bool in_front(const Vec3& x, double eps) const {
+        return surface < 0 || dot(normal, x) - offset > eps;
+    }
+};
+
+/// The emissive surfaces (each emitting side) and the point lights of the scene.
+std::vector<Source> collect_sources(const Scene& scene, const std::vector<Surface>& surfaces);
+
+enum class EventKind { vertex_edge, edge_vertex };
+
+struct HalfPlane {
+    Vec3 m, q; ///< points x with dot(m, x − q) ≥ 0
+};
+
+/// One critical wedge: the part of a plane swept by the lines through a source feature and a
+/// blocker feature, beyond the blocker.
+struct Event {
+    EventKind kind = EventKind::vertex_edge;
+    std::uint32_t source = 0;   ///< index into the sources
+    std::uint32_t feature = 0;  ///< blocker edge (VE) or vertex (EV) in Features
+    std::uint32_t source_k = 0; ///< source vertex (VE) or first vertex of the source edge (EV)
+    int order = 2;              ///< 0 for point lights, 1 for parallel edges, else 2
+    Vec3 apex;                  ///< VE: the source vertex; EV: the blocker vertex
+    Vec3 near_a, near_b;        ///< VE: the blocker edge (the part in front of the source)
+    Vec3 normal;                ///< unit normal of the wedge's plane
+    std::vector<HalfPlane> bounds;
+    BBox box;                   ///< bounds the wedge inside the scene
+};
+
+/// \brief The VE and EV events of every source whose blocker feature is a silhouette seen
+///        from the source feature and is not entirely hidden from it.
+std::vector<Event> critical_events(const std::vector<Source>& sources, const Features& features,
+                                   const SurfaceBvh& bvh, const MeshParams& params,
+                                   const Context& ctx);
+
+} // namespace penumbra::mesher

@@ -1,0 +1,45 @@
+#pragma once
+// Which parts of a surface are hidden inside other geometry (the floor under a box, the
+// inside of a closed object): decided per region between contact lines, by probe rays.
+
+#include <functional>
+#include <vector>
+
+#include "core/scene.h"
+#include "surface_bvh.h"
+#include "surfaces.h"
+
+namespace penumbra::mesher {
+
+class EnclosureTest {
+public:
+    /// \p surfaces and \p bvh must outlive the test.
+    EnclosureTest(const Scene& scene, const std::vector<Surface>& surfaces,
+                  const SurfaceBvh& bvh, const MeshParams& params);
+
+    /// Whether side \p back of surface \p s is already known to be hidden at point \p p.
+    using HiddenAt = std::function<bool(std::uint32_t s, const Vec3& p, bool back)>;
+
+    /// \brief Whether the side with unit normal \p n of surface \p s is enclosed at \p p: every
+    ///        one of 64 probe rays from just above p meets the back side of some surface (or a
+    ///        side that \p hidden_at, if given, reports hidden), and no source (emitting side
+    ///        of an emissive surface, point light) is visible from there. \p inradius bounds
+    ///        the distance from p to the region's boundary.
+    bool enclosed(const Vec3& p, const Vec3& n, std::uint32_t s, double inradius,
+                  const HiddenAt& hidden_at = nullptr) const;
+
+private:
+    bool sees_a_source(const Vec3& q) const;
+
+    struct SourcePoint {
+        Vec3 position;
+        std::int32_t surface = -1; ///< -1 for a point light
+    };
+    const std::vector<Surface>& surfaces_;
+    const SurfaceBvh& bvh_;
+    MeshParams params_;
+    std::vector<Vec3> directions_; ///< unit, around +z
+    std::vector<SourcePoint> sources_;
+};
+
+} // namespace penumbra::mesher

@@ -1,0 +1,162 @@
+#include "surface_bvh.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+namespace penumbra::mesher {
+
+namespace {
+
+Vec3 centre(const BBox& b) { return (b.lo + b.hi) * 0.5; }
+
+bool boxes_overlap(const BBox& a, const BBox& b) {
+    return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
+           a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
+}
+
+// Slab test of the ray against the box, widened by a relative epsilon so that flat boxes of
+// planar surfaces are never missed.
+bool ray_hits_box(const BBox& b, const Vec3& o, const Vec3& inv, double t0, double t1) {
+    for (int k = 0; k < 3; ++k) {
+        const double pad = 1e-9 * (std::abs(b.hi[k]) + std::abs(b.lo[k])) + 1e-12;
+        double ta = (b.lo[k] - pad - o[k]) * inv[k], tb = (b.hi[k] + pad - o[k]) * inv[k];
+        if (ta > tb)
+            std::swap(ta, tb);
+        if (std::isnan(ta) || std::isnan(tb))
+            continue; // zero direction component and origin on the slab boundary
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        if (t0 > t1)
+            return false;
+    }
+    return true;
+}
+
+bool skipped(std::span<const std::uint32_t> skip, std::uint32_t s) {
+    return std::find(skip.begin(), skip.end(), s) != skip.end();
+}
+
+} // namespace
+
+SurfaceBvh::SurfaceBvh(const std::vector<Surface>& surfaces) : surfaces_(surfaces) {
+    order_.resize(surfaces.size());
+    for (std::uint32_t i = 0; i < order_.size(); ++i)
+        order_[i] = i;
+    if (!order_.empty())
+        build(0, std::uint32_t(order_.size()));
+}
+
+std::int32_t SurfaceBvh::build(std::uint32_t first, std::uint32_t count) {
+    const auto index = std::int32_t(nodes_.size());
+    nodes_.emplace_back();
+    BBox box, centres;
+    for (std::uint32_t i = first; i < first + count; ++i) {
+        const BBox& b = surfaces_[order_[i]].box;
+        box.extend(b.lo);
+        box.extend(b.hi);
+        centres.extend(centre(b));
+    }
+    nodes_[std::size_t(index)].box = box;
+    if (count <= 4) {
+        nodes_[std::size_t(index)].first = first;
+        nodes_[std::size_t(index)].count = count;
+        return index;
+    }
+    const Vec3 extent = centres.hi - centres.lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const std::uint32_t half = count / 2;
+    std::nth_element(order_.begin() + first, order_.begin() + first + half,
+                     order_.begin() + first + count, [&](std::uint32_t a, std::uint32_t b) {
+                         const double ca = centre(surfaces_[a].box)[std::size_t(axis)];
+                         const double cb = centre(surfaces_[b].box)[std::size_t(axis)];
+                         return ca < cb || (ca == cb && a < b);
+                     });
+    const std::int32_t left = build(first, half);
+    const std::int32_t right = build(first + half, count - half);
+    nodes_[std::size_t(index)].left = left;
+    nodes_[std::size_t(index)].right = right;
+    return index;
+}
+
+std::vector<std::uint32_t> SurfaceBvh::overlapping(const BBox& box) const {
+    std::vector<std::uint32_t> out;
+    if (nodes_.empty())
+        return out;
+    std::vector<std::int32_t> stack{0};
+    while (!stack.empty()) {
+        const Node& node = nodes_[std::size_t(stack.back())];
+        stack.pop_back();
+        if (!boxes_overlap(node.box, box))
+            continue;
+        if (node.left < 0) {
+            for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+                if (boxes_overlap(surfaces_[order_[i]].box, box))
+                    out.push_back(order_[i]);
+            continue;
+        }
+        stack.push_back(node.left);
+        stack.push_back(node.right);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+template <typename Visit>
+void SurfaceBvh::traverse(const Vec3& origin, const Vec3& dir, double t0, double& t1,
+                          Visit&& visit) const {
+    if (nodes_.empty())
+        return;
+    const Vec3 inv(1.0 / dir.x, 1.0 / dir.y, 1.0 / dir.z);
+    std::array<std::int32_t, 128> stack{};
+    std::size_t top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes_[std::size_t(stack[--top])];
+        if (!ray_hits_box(node.box, origin, inv, t0, t1))
+            continue;
+        if (node.left >= 0) {
+            stack[top++] = node.left;
+            stack[top++] = node.right;
+            continue;
+        }
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+            const Surface& s = surfaces_[order_[i]];
+            const double denom = dot(s.normal, dir);
+            if (denom == 0)
+                continue;
+            const double t = (s.offset - dot(s.normal, origin)) / denom;
+            if (!(t > t0 && t < t1) || !s.contains(origin + dir * t))
+                continue;
+            if (visit(order_[i], t, denom > 0))
+                return;
+        }
+    }
+}
+
+SurfaceBvh::Hit SurfaceBvh::first_hit(const Vec3& origin, const Vec3& dir, double t0, double t1,
+                                      std::span<const std::uint32_t> skip) const {
+    Hit hit;
+    traverse(origin, dir, t0, t1, [&](std::uint32_t s, double t, bool back) {
+        if (skipped(skip, s))
+            return false;
+        if (hit.surface < 0 || t < hit.t || (t == hit.t && std::int32_t(s) < hit.surface)) {
+            hit = {std::int32_t(s), t, back};
+            t1 = t; // only closer hits matter from now on
+        }
+        return false;
+    });
+    return hit;
+}
+
+bool SurfaceBvh::occluded(const Vec3& origin, const Vec3& dir, double t0, double t1,
+                          std::span<const std::uint32_t> skip) const {
+    bool blocked = false;
+    traverse(origin, dir, t0, t1, [&](std::uint32_t s, double, bool) {
+        blocked = !skipped(skip, s);
+        return blocked;
+    });
+    return blocked;
+}
+
+} // namespace penumbra::mesher

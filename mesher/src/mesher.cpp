@@ -32,8 +32,8 @@ MeshParams resolve_params(const Scene& scene) {
     p.contact_tol = m.contact_tolerance.value_or(std::min(0.002, 1e-3 * p.diagonal));
     p.snap = 2e-7 * p.diagonal;
     p.nudge = 1e-6 * p.diagonal;
-    p.min_edge = std::max(p.contact_tol, 2e-3 * p.max_edge);
-    p.merge = std::max(p.snap, 0.5 * p.min_edge);
+    p.min_edge = std::max(p.contact_tol, 0.05 * p.max_edge);
+    p.merge = std::max({p.snap, 0.5 * p.contact_tol, 0.01 * p.max_edge});
     p.split_contacts = m.split_contacts;
     p.max_order = m.discontinuity.enabled ? m.discontinuity.max_order : -1;
     p.budget = m.element_budget;

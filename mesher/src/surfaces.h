@@ -22,7 +22,7 @@ struct MeshParams {
     double min_edge = 0;     ///< faces with a shorter edge are not refined for their angles
     double contact_tol = 0;  ///< gaps up to this are contacts
     double snap = 0;         ///< points closer than this are merged (2e-7 × diagonal)
-    double merge = 0;        ///< parallel constraints closer than this are merged
+    double merge = 0;        ///< constraint points, and parallel lines, closer than this merge
     double nudge = 0;        ///< vertex copies on a contact line move this far off it
     bool split_contacts = true;
     int max_order = 2;       ///< highest discontinuity order inserted; -1 = none

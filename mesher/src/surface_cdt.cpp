@@ -186,6 +186,12 @@ bool crease(const Cdt& cdt, const Face_handle& f) {
     return true;
 }
 
+/// The final faces inside the outline, with their regions (also in FaceInfo).
+struct FinalFaces {
+    std::vector<Face_handle> faces;
+    std::vector<std::int32_t> region;
+};
+
 } // namespace
 
 struct SurfaceTriangulator::Impl {
@@ -199,6 +205,7 @@ struct SurfaceTriangulator::Impl {
     std::int32_t region_at(const Vec2& p, Face_handle& hint) const;
     template <typename FullyHidden>
     void classify_refined(Cdt& cdt, const FullyHidden& fully_hidden, Face_handle& hint) const;
+    FinalFaces final_faces(Cdt& cdt) const;
     bool on_cut(const Vec2& p, double snap) const;
 };
 
@@ -325,11 +332,6 @@ std::int32_t SurfaceTriangulator::region_of(const Vec2& p) const {
 
 namespace {
 
-/// The final faces inside the outline, with their regions (also in FaceInfo).
-struct FinalFaces {
-    std::vector<Face_handle> faces;
-    std::vector<std::int32_t> region;
-};
 
 bool visible(const FinalFaces& ff, const std::vector<RegionInfo>& regions, const Face_handle& f,
              int side) {
@@ -399,6 +401,64 @@ SurfaceTriangulation SurfaceTriangulator::refine(const std::vector<Segment2>& ex
     }
 }
 
+namespace {
+
+// Delaunay refinement of the faces in the domain; false if it stopped at max_steps.
+bool refine_cdt(Cdt& cdt, const std::vector<Segment2>& extra, const RefineSettings& settings) {
+    const SizeField field(extra, settings.max_edge, settings.near_factor);
+    CGAL::Delaunay_mesher_2<Cdt, Criteria> mesher(
+        cdt, Criteria(settings.max_edge, settings.min_edge, extra.empty() ? nullptr : &field));
+    mesher.init(true);
+    std::size_t steps = 0;
+    while (!mesher.is_refinement_done()) {
+        if (++steps > settings.max_steps)
+            return false;
+        mesher.step_by_step_refine_mesh();
+    }
+    return true;
+}
+
+// One side's triangles, with vertex copies per wedge.
+template <typename IsCut>
+SideMesh side_mesh(const Cdt& cdt, const FinalFaces& ff, const std::vector<RegionInfo>& regions,
+                   int side, const IsCut& is_cut, const RefineSettings& settings) {
+    SideMesh out;
+    std::vector<std::array<std::uint32_t, 3>> corner(ff.faces.size());
+    for (Vertex_handle v : cdt.finite_vertex_handles())
+        split_vertex(cdt, v, ff, regions, side, is_cut, settings, out, corner);
+    for (std::size_t i = 0; i < ff.faces.size(); ++i) {
+        if (regions[std::size_t(ff.region[i])].hidden[side]) {
+            out.hidden_area += face_area(ff.faces[i]);
+            continue;
+        }
+        out.triangles.push_back(corner[i]);
+        out.face.push_back(std::uint32_t(i));
+    }
+    return out;
+}
+
+} // namespace
+
+// The faces of the refined triangulation inside the outline (creases of constraint
+// polylines dropped), numbered densely.
+FinalFaces SurfaceTriangulator::Impl::final_faces(Cdt& cdt) const {
+    FinalFaces ff;
+    for (Face_handle f : cdt.finite_face_handles())
+        if (f->info().region >= 0 && crease(cdt, f))
+            f->info().region = -1;
+    for (Face_handle f : cdt.finite_face_handles()) {
+        if (f->info().region < 0)
+            continue;
+        f->info().index = std::int32_t(ff.faces.size());
+        ff.faces.push_back(f);
+        ff.region.push_back(f->info().region);
+    }
+    std::uint32_t vertex_id = 0;
+    for (Vertex_handle v : cdt.finite_vertex_handles())
+        v->info() = vertex_id++;
+    return ff;
+}
+
 SurfaceTriangulation SurfaceTriangulator::refine_impl(const std::vector<Segment2>& extra,
                                                       const RefineSettings& settings) const {
     Cdt cdt;
@@ -418,36 +478,12 @@ SurfaceTriangulation SurfaceTriangulator::refine_impl(const std::vector<Segment2
     }
     SurfaceTriangulation result;
     if (cdt.dimension() < 2 || regions.empty())
-        return result; // collapsed below the snap distance: nothing to mesh
-    const SizeField field(extra, settings.max_edge, settings.near_factor);
-    CGAL::Delaunay_mesher_2<Cdt, Criteria> mesher(
-        cdt, Criteria(settings.max_edge, settings.min_edge, extra.empty() ? nullptr : &field));
-    mesher.init(true);
-    std::size_t steps = 0;
-    while (!mesher.is_refinement_done()) {
-        if (++steps > settings.max_steps) {
-            result.capped = true;
-            break;
-        }
-        mesher.step_by_step_refine_mesh();
-    }
+        return result; // collapsed below the merge distance: nothing to mesh
+    result.capped = !refine_cdt(cdt, extra, settings);
     impl_->classify_refined(cdt, fully_hidden, hint);
-    FinalFaces ff;
-    for (Face_handle f : cdt.finite_face_handles())
-        if (f->info().region >= 0 && crease(cdt, f))
-            f->info().region = -1;
-    for (Face_handle f : cdt.finite_face_handles()) {
-        const std::int32_t r = f->info().region;
-        if (r < 0)
-            continue;
-        f->info().index = std::int32_t(ff.faces.size());
-        ff.faces.push_back(f);
-        ff.region.push_back(r);
-    }
+    const FinalFaces ff = impl_->final_faces(cdt);
     result.face_count = ff.faces.size();
-    std::uint32_t vertex_id = 0;
-    for (Vertex_handle v : cdt.finite_vertex_handles())
-        v->info() = vertex_id++;
+    // Cut edges (contact lines) separate vertex copies; discontinuity edges do not.
     std::unordered_map<std::uint64_t, bool> cut_cache;
     auto is_cut = [&](const Face_handle& f, int i) {
         if (!f->is_constrained(i))
@@ -461,20 +497,8 @@ SurfaceTriangulation SurfaceTriangulator::refine_impl(const std::vector<Segment2
                                        impl_->merge);
         return it->second;
     };
-    for (int side = 0; side < (settings.two_sided ? 2 : 1); ++side) {
-        SideMesh& out = result.sides[side];
-        std::vector<std::array<std::uint32_t, 3>> corner(ff.faces.size());
-        for (Vertex_handle v : cdt.finite_vertex_handles())
-            split_vertex(cdt, v, ff, regions, side, is_cut, settings, out, corner);
-        for (std::size_t i = 0; i < ff.faces.size(); ++i) {
-            if (regions[std::size_t(ff.region[i])].hidden[side]) {
-                out.hidden_area += face_area(ff.faces[i]);
-                continue;
-            }
-            out.triangles.push_back(corner[i]);
-            out.face.push_back(std::uint32_t(i));
-        }
-    }
+    for (int side = 0; side < (settings.two_sided ? 2 : 1); ++side)
+        result.sides[side] = side_mesh(cdt, ff, regions, side, is_cut, settings);
     return result;
 }
 

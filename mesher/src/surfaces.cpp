@@ -235,9 +235,13 @@ std::vector<Surface> build_surfaces(const Scene& scene, const MeshParams& params
         const Material& mat = scene.materials[poly.material];
         const std::string name = fmt::format("'{}' ({})", poly.name, poly.source);
         const auto pieces = planar_pieces(vertices[pi], scene.mesher.planarity_tolerance);
-        if (pieces.empty())
-            ctx.warn("mesh: polygon {} has zero area{}; skipped", name,
-                     params.split_contacts ? " after closing near-contacts" : "");
+        Surface original;
+        if (pieces.empty() && !make_surface(poly.vertices, original))
+            ctx.warn("mesh: polygon {} has zero area (collinear or repeated vertices); skipped",
+                     name);
+        else if (pieces.empty())
+            ctx.warn("mesh: polygon {} is thinner than mesher.contact_tolerance and collapses "
+                     "when near-contacts are closed; skipped", name);
         for (const PlanarPiece& piece : pieces) {
             Surface s;
             if (!make_surface(piece.outline, s))

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "common/test_util.h"
+#include "core/rng.h"
 #include "mesher/mesh_checks.h"
 
 namespace penumbra {
@@ -240,6 +241,43 @@ TEST(Contacts, DegenerateInputNeverCrashes) {
     EXPECT_GT(mesh.element_count(), 0u);
     for (double a : mesh.element_area)
         EXPECT_GT(a, 0.0);
+}
+
+// A soup of random rectangles (many coplanar and crossing, some floating 1 mm above others),
+// collinear "polygons" and small lights: meshing never throws and every element has area.
+TEST(Contacts, RandomSoupNeverCrashes) {
+    for (std::uint64_t seed = 0; seed < 6; ++seed) {
+        Scene scene;
+        auto white = add_material(scene, "white", Rgb(0.5f));
+        auto lamp = add_material(scene, "lamp", Rgb(0.0f), Rgb(5.0f), false);
+        Pcg32 rng = Pcg32::for_stream(RngPurpose::pixel_sample, seed, 0, 0, 1);
+        auto r = [&](double a, double b) { return a + (b - a) * rng.next_double(); };
+        for (int i = 0; i < 50; ++i) {
+            Vec3 o(r(0, 3), r(0, 3), r(0, 3));
+            Vec3 u(r(-1, 1), r(-1, 1), r(-1, 1)), v(r(-1, 1), r(-1, 1), r(-1, 1));
+            const int kind = i % 4;
+            if (kind == 0) { // horizontal, on a few heights: coplanar overlaps
+                u = {r(0.1, 1.5), 0, 0};
+                v = {0, r(0.1, 1.5), 0};
+                o.z = std::round(o.z * 2) / 2;
+            } else if (kind == 1) { // vertical, standing on or floating 1 mm above a height
+                u = {r(0.1, 1.5), 0, 0};
+                v = {0, 0, r(0.1, 1.5)};
+                o.z = std::round(o.z * 2) / 2 + (i % 3 == 0 ? 0.001 : 0.0);
+            }
+            Polygon p{{o, o + u, o + u + v, o + v}, i % 9 == 0 ? lamp : white,
+                      "p" + std::to_string(i), "soup"};
+            if (kind == 3)
+                p.vertices = {o, o + u, o + u * 2.0}; // collinear
+            scene.polygons.push_back(p);
+        }
+        scene.mesher.max_edge_length = 0.3;
+        RadiosityMesh mesh;
+        ASSERT_NO_THROW(mesh = mesh_of(scene, std::make_shared<CaptureSink>())) << seed;
+        EXPECT_GT(mesh.element_count(), 100u);
+        for (double a : mesh.element_area)
+            ASSERT_GT(a, 0.0) << "seed " << seed;
+    }
 }
 
 } // namespace

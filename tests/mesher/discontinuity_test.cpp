@@ -98,58 +98,63 @@ Poly2 point_shadow(const BoxScene& b, const Vec3& v) {
     return convex_hull(pts);
 }
 
+// Checks the runs of points of one edge of shadows[k] that lie on the penumbra's outer
+// boundary (inside no other point shadow) or on the umbra's boundary (inside all), outside
+// the footprint; returns the number of runs checked.
+int check_shadow_edge(const RadiosityMesh& mesh, std::uint32_t floor,
+                      const std::array<Poly2, 4>& shadows, const Poly2& footprint, std::size_t k,
+                      std::size_t i, double tol) {
+    const Poly2& s = shadows[k];
+    const auto a = s.v[i], c = s.v[(i + 1) % s.v.size()];
+    const int n = 400;
+    auto point = [&](int j) {
+        const double t = double(j) / n;
+        return Vec3(a[0] + (c[0] - a[0]) * t, a[1] + (c[1] - a[1]) * t, 0);
+    };
+    int checked = 0, run_start = -1;
+    auto close_run = [&](int end) {
+        if (run_start >= 0 && end - run_start >= 2) {
+            EXPECT_TRUE(test::segment_on_element_edges(mesh, floor, point(run_start),
+                                                       point(end - 1), tol))
+                << "light vertex " << k << ", shadow edge " << i << ", samples " << run_start
+                << "-" << end - 1;
+            ++checked;
+        }
+        run_start = -1;
+    };
+    for (int j = 0; j <= n; ++j) {
+        const std::array<double, 2> x{point(j).x, point(j).y};
+        bool outer = true, umbra = true;
+        for (std::size_t m = 0; m < 4; ++m) {
+            if (m == k)
+                continue;
+            const double d = inside_depth(shadows[m], x);
+            outer = outer && d < -1e-4;
+            umbra = umbra && d > 1e-4;
+        }
+        const bool wanted = (outer || umbra) && inside_depth(footprint, x) < -1e-4;
+        if (wanted && run_start < 0)
+            run_start = j;
+        if (!wanted)
+            close_run(j);
+    }
+    close_run(n + 1);
+    return checked;
+}
+
 TEST(Discontinuity, UmbraAndPenumbraBoundariesLieOnElementEdges) {
     const BoxScene b = box_scene();
     const RadiosityMesh mesh = mesher::build_mesh(b.scene, test::quiet_context());
     const auto floor = std::uint32_t(test::find_patch(mesh, 0));
-    const double tol = 1e-6 * mesh.scene_diagonal;
     std::array<Poly2, 4> shadows;
     for (std::size_t k = 0; k < 4; ++k)
         shadows[k] = point_shadow(b, b.light[k]);
     const Poly2 footprint{{b.footprint.begin(), b.footprint.end()}};
     int checked = 0;
-    for (std::size_t k = 0; k < 4; ++k) {
-        const Poly2& s = shadows[k];
-        for (std::size_t i = 0; i < s.v.size(); ++i) {
-            const auto a = s.v[i], c = s.v[(i + 1) % s.v.size()];
-            // Runs of points of this edge on the penumbra's outer boundary (inside no other
-            // point shadow) or on the umbra's boundary (inside all), outside the footprint.
-            const int n = 400;
-            int run_start = -1;
-            auto close_run = [&](int end) {
-                if (run_start >= 0 && end - run_start >= 2) {
-                    const auto p = [&](int j) {
-                        const double t = double(j) / n;
-                        return Vec3(a[0] + (c[0] - a[0]) * t, a[1] + (c[1] - a[1]) * t, 0);
-                    };
-                    EXPECT_TRUE(test::segment_on_element_edges(mesh, floor, p(run_start),
-                                                               p(end - 1), tol))
-                        << "light vertex " << k << ", shadow edge " << i << ", samples "
-                        << run_start << "-" << end - 1;
-                    ++checked;
-                }
-                run_start = -1;
-            };
-            for (int j = 0; j <= n; ++j) {
-                const double t = double(j) / n;
-                const std::array<double, 2> x{a[0] + (c[0] - a[0]) * t, a[1] + (c[1] - a[1]) * t};
-                bool outer = true, umbra = true;
-                for (std::size_t m = 0; m < 4; ++m) {
-                    if (m == k)
-                        continue;
-                    const double d = inside_depth(shadows[m], x);
-                    outer = outer && d < -1e-4;
-                    umbra = umbra && d > 1e-4;
-                }
-                const bool wanted = (outer || umbra) && inside_depth(footprint, x) < -1e-4;
-                if (wanted && run_start < 0)
-                    run_start = j;
-                if (!wanted)
-                    close_run(j);
-            }
-            close_run(n + 1);
-        }
-    }
+    for (std::size_t k = 0; k < 4; ++k)
+        for (std::size_t i = 0; i < shadows[k].v.size(); ++i)
+            checked += check_shadow_edge(mesh, floor, shadows, footprint, k, i,
+                                         1e-6 * mesh.scene_diagonal);
     EXPECT_GE(checked, 8);
     std::array<int, 3> orders{0, 0, 0};
     for (const DiscontinuitySegment& d : mesh.discontinuities) {

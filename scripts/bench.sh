@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Bakes the Cornell box at three element sizes; prints elements, rays, seconds per stage and
-# the power balance. Build first (scripts/setup.sh).
+# the power balance. Then meshes the Cornell box and generated office floors with and without
+# discontinuity meshing (mesh_bench). Build first (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 if [ $# -eq 0 ]; then set -- 0.10 0.05 0.04; fi
 build/bench/bake_sizes data/cornell/scene.json "$@"
+build/bench/mesh_bench 0.25 1 2 4 8

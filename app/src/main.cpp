@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
         ->required();
     bake_cmd->add_option("-o,--output", bake.output, "output folder (created if missing)");
     bake_cmd->add_option("--max-edge", bake.max_edge_m,
-                         "maximum element edge length in metres (overrides the scene)")
+                         "element size in metres: edges up to √2 × this (overrides mesher.max_edge_length)")
         ->check(CLI::PositiveNumber);
     bake_cmd->add_option("--residual", bake.residual,
                          "stop when unshot power / emitted power falls below this")

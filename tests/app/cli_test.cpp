@@ -18,24 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-    int exit_code = -1;
-    std::string err;
-};
-
-RunResult run_cli(const std::string& args) {
-    std::string cmd = std::string(PENUMBRA_CLI) + " " + args + " 2>&1 1>/dev/null";
-    RunResult r;
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe)
-        return r;
-    std::array<char, 4096> buf{};
-    while (std::fgets(buf.data(), int(buf.size()), pipe))
-        r.err += buf.data();
-    int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using test::RunResult;
+using test::run_cli;
 
 void write(const fs::path& path, const std::string& text) {
     std::ofstream(path) << text;

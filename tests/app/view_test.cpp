@@ -58,24 +58,8 @@ const char* const k_regenerate =
 constexpr double k_max_edge_m = 0.08;
 constexpr double k_residual = 0.01;
 
-struct RunResult {
-    int exit_code = -1;
-    std::string err;
-};
-
-RunResult run_cli(const std::string& args) {
-    const std::string cmd = std::string(PENUMBRA_CLI) + " " + args + " 2>&1 1>/dev/null";
-    RunResult r;
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    if (!pipe)
-        return r;
-    std::array<char, 4096> buf{};
-    while (std::fgets(buf.data(), int(buf.size()), pipe))
-        r.err += buf.data();
-    const int status = ::pclose(pipe);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+using test::RunResult;
+using test::run_cli;
 
 struct Picture {
     int width = 0, height = 0;

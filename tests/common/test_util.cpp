@@ -1,9 +1,11 @@
 #include "common/test_util.h"
 
+#include <array>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace penumbra::test {
@@ -40,6 +42,20 @@ Context quiet_context(int threads) {
     ctx.threads = threads;
     ctx.min_level = LogLevel::warn;
     return ctx;
+}
+
+RunResult run_cli(const std::string& args) {
+    const std::string cmd = std::string(PENUMBRA_CLI) + " " + args + " 2>&1 1>/dev/null";
+    RunResult r;
+    FILE* pipe = ::popen(cmd.c_str(), "r");
+    if (!pipe)
+        return r;
+    std::array<char, 4096> buf{};
+    while (std::fgets(buf.data(), int(buf.size()), pipe))
+        r.err += buf.data();
+    const int status = ::pclose(pipe);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
 }
 
 std::uint32_t add_material(Scene& scene, const std::string& name, Rgb reflectance, Rgb emission,

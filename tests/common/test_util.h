@@ -22,6 +22,15 @@ Context quiet_context(int threads = 0);
 
 namespace penumbra::test {
 
+/// Exit code and standard error of one run of the penumbra CLI.
+struct RunResult {
+    int exit_code = -1;
+    std::string err;
+};
+
+/// Runs the built penumbra CLI with \p args (standard output discarded).
+RunResult run_cli(const std::string& args);
+
 /// Adds a material; returns its index.
 std::uint32_t add_material(Scene& scene, const std::string& name, Rgb reflectance,
                            Rgb emission = {}, bool two_sided = true);

@@ -45,6 +45,7 @@ struct BakeFlags {
     std::string method;
     double epsilon = 0;
     double min_area_m2 = 0;
+    std::string clustering;
     std::int64_t series_every_shots = 0;
 };
 
@@ -80,6 +81,8 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
         scene.solver.epsilon = flags.epsilon;
     if (flags.min_area_m2 > 0)
         scene.solver.min_area = flags.min_area_m2;
+    if (!flags.clustering.empty())
+        scene.solver.clustering = flags.clustering;
     check_output_dir(flags.output);
     app::BakeOptions options;
     options.render = !flags.no_render;
@@ -136,7 +139,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1e-12, 0.999999));
     bake_cmd->add_flag("--no-render", bake.no_render, "skip the camera render");
     bake_cmd->add_option("--method", bake.method, "solver method (overrides solver.method)")
-        ->check(CLI::IsMember({"hierarchical", "shooting", "jacobi", "gauss_seidel", "matrix"}));
+        ->check(CLI::IsMember(
+            {"hierarchical", "shooting", "gathering", "jacobi", "gauss_seidel", "matrix"}));
     bake_cmd->add_option("--epsilon", bake.epsilon,
                          "hierarchical: refinement threshold, relative to the brightest source's "
                          "exitance (overrides solver.epsilon)")
@@ -144,6 +148,11 @@ int main(int argc, char** argv) {
     bake_cmd->add_option("--min-area", bake.min_area_m2,
                          "hierarchical: smallest element area in m² (overrides solver.min_area)")
         ->check(CLI::PositiveNumber);
+    bake_cmd->add_option("--clustering", bake.clustering,
+                         "hierarchical: start from a cluster tree (on), from all pairs of mesh "
+                         "elements (off), or cluster above 3 000 elements (auto; overrides "
+                         "solver.clustering)")
+        ->check(CLI::IsMember({"auto", "on", "off"}));
     bake_cmd->add_option("--series", bake.series_every_shots,
                          "write the solution every K shots as series/mesh_*.vtu + series.pvd")
         ->check(CLI::PositiveNumber);

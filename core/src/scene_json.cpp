@@ -386,16 +386,17 @@ double number_in(const Field& field, double lo, double hi, const char* range) {
 }
 
 SolverSettings parse_solver(const Field& field, double metres_per_unit) {
-    field.expect_keys({"method", "oracle", "residual", "epsilon", "min_area", "max_sweeps", "ambient",
-                       "max_shots", "visibility_rays", "row_cache_mb"});
+    field.expect_keys({"method", "oracle", "clustering", "residual", "epsilon", "min_area",
+                       "max_sweeps", "ambient", "max_shots", "visibility_rays", "row_cache_mb"});
     SolverSettings solver;
     if (field.has("method")) {
         const Field method = field.child("method");
         solver.method = method.string();
-        const char* known[] = {"hierarchical", "shooting", "jacobi", "gauss_seidel", "matrix"};
+        const char* known[] = {"hierarchical", "shooting", "gathering",
+                               "jacobi",       "gauss_seidel", "matrix"};
         if (std::find(std::begin(known), std::end(known), solver.method) == std::end(known))
-            method.fail(fmt::format("unknown method '{}' (known: hierarchical, shooting, jacobi, "
-                                    "gauss_seidel, matrix)",
+            method.fail(fmt::format("unknown method '{}' (known: hierarchical, shooting, "
+                                    "gathering, jacobi, gauss_seidel, matrix)",
                                     solver.method));
     }
     if (field.has("oracle")) {
@@ -403,6 +404,14 @@ SolverSettings parse_solver(const Field& field, double metres_per_unit) {
         solver.oracle = oracle.string();
         if (solver.oracle != "variation" && solver.oracle != "bf")
             oracle.fail(fmt::format("unknown oracle '{}' (known: variation, bf)", solver.oracle));
+    }
+    if (field.has("clustering")) {
+        const Field clustering = field.child("clustering");
+        solver.clustering = clustering.string();
+        if (solver.clustering != "auto" && solver.clustering != "on" &&
+            solver.clustering != "off")
+            clustering.fail(fmt::format("unknown clustering '{}' (known: auto, on, off)",
+                                        solver.clustering));
     }
     if (field.has("residual"))
         solver.residual = number_in(field.child("residual"), 1e-12, 0.5, "[1e-12, 0.5]");

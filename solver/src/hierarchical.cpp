@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "cluster_transport.h"
 #include "core/parallel.h"
 #include "hierarchy.h"
 #include "hr_links.h"
@@ -26,6 +27,8 @@ namespace penumbra::solver {
 namespace {
 
 constexpr int k_max_cycles = 12;
+/// solver.clustering "auto" clusters meshes with more elements than this.
+constexpr std::size_t k_clustering_auto_roots = 3000;
 
 struct NodeValues {
     std::vector<Rgb> b, gathered_direct, gathered_indirect, h_direct, h_indirect;
@@ -109,16 +112,33 @@ Rgb push_pull(const Hierarchy& h, NodeValues& v, std::uint32_t node, const Rgb& 
     return b;
 }
 
-double sweep(const Hierarchy& h, const LinkSet& links, NodeValues& v, double emitted) {
+/// The cluster tree and its values, when clustering.
+struct Clusters {
+    ClusterTree tree;
+    ClusterValues values;
+    bool enabled = false;
+};
+
+double sweep(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
+             double emitted) {
     gather(h, links, v);
+    if (clusters.enabled) {
+        gather_cluster_links(h, clusters.tree, links, v.b, clusters.values, v.gathered_direct,
+                             v.gathered_indirect);
+        push_clusters(clusters.tree, h, clusters.values);
+    }
     v.h_direct.resize(h.size());
     v.h_indirect.resize(h.size());
     v.b_lo.resize(h.size());
     v.b_hi.resize(h.size());
     std::vector<double> change(h.root_count, 0.0);
     parallel_for_index(h.root_count, 16, [&](std::size_t r) {
-        push_pull(h, v, std::uint32_t(r), Rgb{}, Rgb{}, change[r]);
+        const bool c = clusters.enabled;
+        push_pull(h, v, std::uint32_t(r), c ? clusters.values.root_direct[r] : Rgb{},
+                  c ? clusters.values.root_indirect[r] : Rgb{}, change[r]);
     });
+    if (clusters.enabled)
+        pull_clusters(clusters.tree, h, v.b, clusters.values);
     double total = 0;
     for (double c : change)
         total += c;
@@ -148,11 +168,11 @@ struct SweepLog {
     std::int64_t total = 0;
 };
 
-Solved solve_links(const Hierarchy& h, const LinkSet& links, NodeValues& v,
+Solved solve_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
                    const SolverSettings& settings, double emitted, SweepLog& log) {
     Solved s;
     while (s.sweeps < settings.max_sweeps && s.relative > settings.residual) {
-        s.relative = sweep(h, links, v, emitted);
+        s.relative = sweep(h, links, v, clusters, emitted);
         ++s.sweeps;
         ++log.total;
         if (log.stats)
@@ -184,14 +204,27 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     v.b = h.emission;
     v.b_range.assign(h.size(), 0.0f);
     ProgressStage progress(ctx, "hierarchical");
-    links.link_roots();
+    Clusters clusters;
+    clusters.enabled = scene.solver.clustering == "on" ||
+                       (scene.solver.clustering == "auto" && h.root_count > k_clustering_auto_roots);
+    if (clusters.enabled) {
+        clusters.tree = build_cluster_tree(h);
+        init_cluster_values(clusters.tree, h, v.b, clusters.values);
+        links.link_clusters(clusters.tree, clusters.values.exitance, clusters.values.peak);
+        ctx.info("hierarchical: {} clusters over {} elements", clusters.tree.size(),
+                 h.root_count);
+    } else {
+        links.link_roots();
+    }
     links.set_threshold(scene.solver.epsilon * radiosity_scale(h, links));
+    if (clusters.enabled)
+        links.set_cluster_threshold(scene.solver.epsilon * emitted / clusters.tree.area[0]);
     SweepLog log{mesh, observer, stats};
     for (int cycle = 0; cycle < k_max_cycles; ++cycle) {
         const bool changed = links.refine(v.b, v.b_range);
-        Solved s = solve_links(h, links, v, scene.solver, emitted, log);
+        Solved s = solve_links(h, links, v, clusters, scene.solver, emitted, log);
         ctx.info("hierarchical: cycle {}: {} nodes, {} links, {} sweeps, change {:.2e}", cycle,
-                 h.size(), links.links().size() + links.light_links().size(), s.sweeps,
+                 h.size(), links.link_count(), s.sweeps,
                  s.relative);
         progress.update(double(cycle + 1) / k_max_cycles);
         if (!changed && cycle > 0)
@@ -210,7 +243,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     result.solution = make_solution(scene, leaf.mesh, geo, er, visibility, row_settings, ctx);
     if (stats) {
         stats->shots = log.total;
-        stats->links = links.links().size() + links.light_links().size();
+        stats->links = links.link_count();
         stats->power = hierarchical_balance(scene, leaf.mesh, geo, result.solution, visibility,
                                             row_settings, stats->residual_history.empty()
                                                               ? 0.0

@@ -69,14 +69,17 @@ LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
     return link;
 }
 
+bool LinkSet::linkable(std::uint32_t q, std::uint32_t p) const {
+    return p != q && twin_[q] != std::int32_t(p) && can_radiate(h_, p) &&
+           faces(h_, q, p, 1e-9 * h_.diagonal);
+}
+
 void LinkSet::link_roots() {
     const std::size_t r = h_.root_count;
-    const double eps = 1e-9 * h_.diagonal;
     std::vector<std::vector<Link>> per_receiver(r);
     parallel_for_index(r, 4, [&](std::size_t q) {
         for (std::uint32_t p = 0; p < r; ++p) {
-            if (p == q || twin_[q] == std::int32_t(p) || !can_radiate(h_, p) ||
-                !faces(h_, std::uint32_t(q), p, eps))
+            if (!linkable(std::uint32_t(q), p))
                 continue;
             Link link = make_link(std::uint32_t(q), p);
             if (link.ff > 0)
@@ -86,6 +89,12 @@ void LinkSet::link_roots() {
     links_.clear();
     for (auto& v : per_receiver)
         links_.insert(links_.end(), v.begin(), v.end());
+    link_lights();
+    sort_and_index();
+}
+
+void LinkSet::link_lights() {
+    const std::size_t r = h_.root_count;
     light_links_.clear();
     for (std::uint32_t l = 0; l < lights_.size(); ++l) {
         std::vector<LightLink> made(r);
@@ -94,7 +103,6 @@ void LinkSet::link_roots() {
             if (!link.irradiance.is_black())
                 light_links_.push_back(link);
     }
-    sort_and_index();
 }
 
 void LinkSet::subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<float>& b_range) {
@@ -218,6 +226,8 @@ bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range) {
     bool changed = false;
     while (refine_light_pass(b, b_range))
         changed = true;
+    while (tree_ && refine_cluster_pass(b, b_range))
+        changed = true;
     while (refine_pass(b, b_range))
         changed = true;
     sort_and_index();
@@ -233,6 +243,8 @@ void LinkSet::sort_and_index() {
         ++offsets_[l.receiver + 1];
     for (std::size_t n = 0; n < h_.size(); ++n)
         offsets_[n + 1] += offsets_[n];
+    if (tree_)
+        index_cluster_links();
 }
 
 } // namespace penumbra::solver

@@ -6,8 +6,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/rng.h"
 #include "core/scene.h"
 #include "core/visibility.h"
+#include "cluster_tree.h"
 #include "element_rows.h"
 #include "hierarchy.h"
 
@@ -27,6 +29,17 @@ struct LightLink {
     std::uint8_t partial = 0;
 };
 
+/// A link with a cluster at one end or both (Smits et al. 1994): the source is seen as a point
+/// of intensity (1/π) Σ B A cos toward the receiver, the receiver as a point at its centre.
+struct ClusterLink {
+    NodeRef receiver = 0, source = 0;
+    float g = 0;   ///< mean 1 / (π d²) over the open rays between the two ends (all if none)
+    float v = 0;   ///< visible fraction from the link's rays
+    Vec3f d;       ///< unit direction from the receiver's centre to the source's centre
+    std::uint8_t partial = 0; ///< the rays disagreed
+    std::uint8_t self = 0;    ///< a cluster's link to itself: carries nothing until refined
+};
+
 /// What the refinement oracle weighs against ε: F·B (Hanrahan et al.'s BF), or ΔF·B + F·ΔB:
 /// the variation of the form factor over the receiver times the source radiosity (the error
 /// of giving the whole receiver one value) plus the form factor times the range of radiosity
@@ -37,6 +50,10 @@ struct RefineSettings {
     Oracle oracle = Oracle::variation;
     /// W/m² (largest channel): refine links whose F·B (the irradiance they bring) exceeds it.
     double threshold = 0;
+    /// W/m²: the same for cluster links, whose point approximation may be off by a factor
+    /// where a small bright source lights a large cluster: ε × the mean irradiance (emitted
+    /// power over the total area) rather than ε × the brightest exitance.
+    double cluster_threshold = 0;
     double min_area = 0;        ///< m²
     RowSettings rows;
     double offset = 0;
@@ -50,8 +67,16 @@ public:
     /// Links between all pairs of roots that face each other, and from every light to every
     /// root it can see.
     void link_roots();
+    /// With clusters: one link of the top cluster to itself, which refinement splits, and the
+    /// lights' links to every root they see. \p exitance is the clusters' exitance lobes
+    /// (Σ B A cos) and \p peak their brightest root's radiosity, read by the oracle at every
+    /// refine().
+    void link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
+                       const std::vector<float>& peak);
     /// Sets the refinement threshold (W/m²).
     void set_threshold(double threshold) { settings_.threshold = threshold; }
+    /// Sets the cluster links' refinement threshold (W/m²).
+    void set_cluster_threshold(double threshold) { settings_.cluster_threshold = threshold; }
     /// Refines every link whose oracle says so, given node radiosities \p b and their ranges
     /// over each node's leaves \p b_range (largest channel), until none does. New nodes get
     /// their parent's values. Returns true if anything changed.
@@ -59,6 +84,14 @@ public:
 
     const std::vector<Link>& links() const { return links_; }
     const std::vector<LightLink>& light_links() const { return light_links_; }
+    const std::vector<ClusterLink>& cluster_links() const { return cluster_links_; }
+    /// CSR offsets of cluster_links() with an element receiver, by element node, and with a
+    /// cluster receiver, by cluster (cluster links are kept sorted by receiver).
+    const std::vector<std::uint32_t>& cluster_offsets_elements() const { return cl_elements_; }
+    const std::vector<std::uint32_t>& cluster_offsets_clusters() const { return cl_clusters_; }
+    std::size_t link_count() const {
+        return links_.size() + light_links_.size() + cluster_links_.size();
+    }
     /// CSR offsets of links() by receiver node (links are kept sorted by receiver).
     const std::vector<std::uint32_t>& receiver_offsets() const { return offsets_; }
 
@@ -69,6 +102,23 @@ private:
     bool refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     bool refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     void sort_and_index();
+    void link_lights();
+    /// Elements q and p may exchange light: distinct, not twins, p radiates, they face.
+    bool linkable(std::uint32_t q, std::uint32_t p) const;
+    void index_cluster_links();
+    // Clusters (hr_cluster_links.cpp).
+    ClusterLink make_cluster_link(NodeRef receiver, NodeRef source) const;
+    bool refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
+    double cluster_link_error(const ClusterLink& link, const std::vector<Rgb>& b) const;
+    Vec3 node_centre(NodeRef n) const;
+    double node_radius(NodeRef n) const;
+    bool splittable(NodeRef n) const;
+    /// Some surface of cluster \p c may face some point of \p other (by its axis lobes and
+    /// the bounding boxes: conservative).
+    bool faces_box(std::uint32_t c, NodeRef other) const;
+    Vec3 sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec3& normal) const;
+    template <typename Fn>
+    void for_each_child(NodeRef n, Fn&& fn) const;
 
     Hierarchy& h_;
     std::vector<std::int32_t>& twin_;
@@ -78,6 +128,12 @@ private:
     std::vector<Link> links_;
     std::vector<LightLink> light_links_;
     std::vector<std::uint32_t> offsets_;
+    const ClusterTree* tree_ = nullptr;
+    const std::vector<Lobes>* exitance_ = nullptr;
+    const std::vector<float>* peak_ = nullptr;
+    std::vector<Lobes> area_lobes_; ///< per cluster: Σ A max(0, ±n_a)
+    std::vector<ClusterLink> cluster_links_;
+    std::vector<std::uint32_t> cl_elements_, cl_clusters_;
 };
 
 } // namespace penumbra::solver

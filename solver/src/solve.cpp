@@ -25,7 +25,7 @@ SolveResult solve_fixed(const Scene& scene, const RadiosityMesh& mesh,
         ElementResult er = method == "matrix"
                                ? solve_matrix(system, geo, ctx, stats)
                                : solve_gathering(system, geo, scene.solver,
-                                                 method == "gauss_seidel", ctx, stats);
+                                                 method != "jacobi", ctx, stats);
         SolveResult result;
         result.solution = make_solution(scene, mesh, geo, std::move(er), visibility, rows, ctx);
         if (observer && observer->on_pass)
@@ -79,10 +79,11 @@ SolveResult solve(const Scene& scene, const RadiosityMesh& mesh,
         result.solution = solve_shooting(scene, mesh, visibility, ctx, stats, observer);
         return result;
     }
-    if (method == "jacobi" || method == "gauss_seidel" || method == "matrix")
+    if (method == "gathering" || method == "jacobi" || method == "gauss_seidel" ||
+        method == "matrix")
         return solve_fixed(scene, mesh, visibility, ctx, stats, observer);
     throw ConfigError(fmt::format("unknown solver method '{}' (known: hierarchical, shooting, "
-                                  "jacobi, gauss_seidel, matrix)",
+                                  "gathering, jacobi, gauss_seidel, matrix)",
                                   method));
 }
 

@@ -16,6 +16,7 @@ enum class RngPurpose : std::uint64_t {
     sensor_visibility = 5,
     pixel_sample = 6,
     vertex_visibility = 7,
+    cluster_visibility = 8,
 };
 
 /// SplitMix64 finaliser: a strong 64-bit mix.

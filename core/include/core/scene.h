@@ -76,7 +76,8 @@ struct MesherSettings {
 };
 
 struct SolverSettings {
-    /// "hierarchical" (default), "shooting", "jacobi", "gauss_seidel" or "matrix".
+    /// "hierarchical" (default), "shooting", "gathering" (= "gauss_seidel"), "jacobi",
+    /// "gauss_seidel" or "matrix".
     std::string method = "hierarchical";
     double residual = 1e-3;       ///< stop when unshot (or changing) power / emitted falls below
     double epsilon = 1e-3;        ///< hierarchical: refine links whose estimate > ε × brightest exitance
@@ -84,6 +85,8 @@ struct SolverSettings {
     /// source radiosity) or "bf" (F·B, Hanrahan et al. 1991).
     std::string oracle = "variation";
     double min_area = 0;          ///< hierarchical: m², smallest element; 0 = (diagonal / 200)²
+    /// hierarchical: "auto" (clusters when the mesh has more than 3 000 elements), "on", "off".
+    std::string clustering = "auto";
     int max_sweeps = 500;         ///< gathering: most sweeps per solve
     bool ambient = false;         ///< add the ambient term (previews only)
     std::int64_t max_shots = 0;   ///< 0 = 50 × element count

@@ -1,0 +1,112 @@
+#include "cluster_transport.h"
+
+#include <algorithm>
+
+#include "core/parallel.h"
+
+namespace penumbra::solver {
+
+namespace {
+
+struct SourceTerm {
+    Rgb emitted, total; ///< Σ E A cos and Σ B A cos toward the receiver, times g · v
+};
+
+SourceTerm source_term(const Hierarchy& h, const ClusterValues& cv, const std::vector<Rgb>& b,
+                       const ClusterLink& link) {
+    const Vec3 toward_receiver = -Vec3(link.d);
+    const float scale = link.g * link.v;
+    if (is_cluster(link.source)) {
+        const std::uint32_t c = cluster_index(link.source);
+        return {lobe_projection(cv.exitance_emitted[c], toward_receiver) * scale,
+                lobe_projection(cv.exitance[c], toward_receiver) * scale};
+    }
+    const std::uint32_t p = link.source;
+    const float f =
+        scale * float(h.area[p] * std::max(0.0, dot(h.normal[p], toward_receiver)));
+    return {h.emission[p] * f, b[p] * f};
+}
+
+} // namespace
+
+void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
+                         ClusterValues& cv) {
+    pull_lobes(tree, h, h.emission, cv.exitance_emitted);
+    pull_clusters(tree, h, b, cv);
+    cv.gathered_direct.assign(tree.size(), Lobes{});
+    cv.gathered_indirect.assign(tree.size(), Lobes{});
+    cv.root_direct.assign(h.root_count, Rgb{});
+    cv.root_indirect.assign(h.root_count, Rgb{});
+}
+
+void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const LinkSet& links,
+                          const std::vector<Rgb>& b, ClusterValues& cv,
+                          std::vector<Rgb>& gathered_direct,
+                          std::vector<Rgb>& gathered_indirect) {
+    const auto& all = links.cluster_links();
+    const auto& by_element = links.cluster_offsets_elements();
+    const auto& by_cluster = links.cluster_offsets_clusters();
+    parallel_for_index(h.size(), 256, [&](std::size_t q) {
+        Rgb direct, indirect;
+        for (std::uint32_t k = by_element[q]; k < by_element[q + 1]; ++k) {
+            const ClusterLink& l = all[k];
+            if (l.self)
+                continue;
+            const SourceTerm s = source_term(h, cv, b, l);
+            const float cosine = float(std::max(0.0, dot(h.normal[q], Vec3(l.d))));
+            direct += s.emitted * cosine;
+            indirect += (s.total - s.emitted) * cosine;
+        }
+        gathered_direct[q] += direct;
+        gathered_indirect[q] += indirect;
+    });
+    parallel_for_index(tree.size(), 64, [&](std::size_t c) {
+        Lobes direct{}, indirect{};
+        for (std::uint32_t k = by_cluster[c]; k < by_cluster[c + 1]; ++k) {
+            const ClusterLink& l = all[k];
+            if (l.self)
+                continue;
+            const SourceTerm s = source_term(h, cv, b, l);
+            lobe_deposit(direct, Vec3(l.d), s.emitted);
+            lobe_deposit(indirect, Vec3(l.d), s.total - s.emitted);
+        }
+        cv.gathered_direct[c] = direct;
+        cv.gathered_indirect[c] = indirect;
+    });
+}
+
+void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& cv) {
+    std::vector<Lobes> down_direct(tree.size()), down_indirect(tree.size());
+    for (std::size_t c = 0; c < tree.size(); ++c) { // parents before children
+        down_direct[c] = cv.gathered_direct[c];
+        down_indirect[c] = cv.gathered_indirect[c];
+        if (tree.parent[c] >= 0) {
+            const auto parent = std::size_t(tree.parent[c]);
+            for (std::size_t l = 0; l < 6; ++l) {
+                down_direct[c][l] += down_direct[parent][l];
+                down_indirect[c][l] += down_indirect[parent][l];
+            }
+        }
+        for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
+            const NodeRef r = tree.children[k];
+            if (is_cluster(r))
+                continue;
+            cv.root_direct[r] = lobe_projection(down_direct[c], h.normal[r]);
+            cv.root_indirect[r] = lobe_projection(down_indirect[c], h.normal[r]);
+        }
+    }
+}
+
+void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
+                   ClusterValues& cv) {
+    pull_lobes(tree, h, b, cv.exitance);
+    cv.peak.assign(tree.size(), 0.0f);
+    for (std::size_t c = tree.size(); c-- > 0;) // children after parents
+        for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
+            const NodeRef child = tree.children[k];
+            cv.peak[c] = std::max(cv.peak[c], is_cluster(child) ? cv.peak[cluster_index(child)]
+                                                                : b[child].max_component());
+        }
+}
+
+} // namespace penumbra::solver

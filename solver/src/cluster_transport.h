@@ -1,0 +1,40 @@
+#pragma once
+// Light transport through cluster links (see cluster_tree.h): gathering over the links, the
+// push of clusters' irradiance lobes down to the roots, and the pull of exitance lobes up.
+
+#include <vector>
+
+#include "cluster_tree.h"
+#include "hierarchy.h"
+#include "hr_links.h"
+
+namespace penumbra::solver {
+
+struct ClusterValues {
+    std::vector<Lobes> exitance_emitted;  ///< Σ E A cos lobes per cluster (fixed)
+    std::vector<Lobes> exitance;          ///< Σ B A cos lobes per cluster
+    std::vector<float> peak;              ///< largest radiosity of a root (largest channel)
+    std::vector<Lobes> gathered_direct;   ///< irradiance lobes gathered by each cluster
+    std::vector<Lobes> gathered_indirect;
+    std::vector<Rgb> root_direct;         ///< irradiance pushed down to each root
+    std::vector<Rgb> root_indirect;
+};
+
+/// Exitance lobes of the emission (fixed) and of the radiosity \p b; sized for \p tree.
+void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
+                         ClusterValues& cv);
+
+/// \brief Gathers every cluster link: adds to the element receivers' \p gathered_direct /
+///        \p gathered_indirect and sets the clusters' gathered lobes. Parallel by receiver.
+void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const LinkSet& links,
+                          const std::vector<Rgb>& b, ClusterValues& cv,
+                          std::vector<Rgb>& gathered_direct, std::vector<Rgb>& gathered_indirect);
+
+/// Pushes the clusters' gathered lobes down to the roots (cv.root_direct / root_indirect).
+void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& cv);
+
+/// Pulls the roots' radiosity \p b up into the clusters' exitance lobes.
+void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
+                   ClusterValues& cv);
+
+} // namespace penumbra::solver

@@ -1,0 +1,71 @@
+#pragma once
+// Volume clusters over the roots of the element hierarchy (Smits, Arvo & Greenberg 1994;
+// Sillion 1995): a binary tree of bounding boxes whose leaves hold a few root elements, so
+// that distant groups of surfaces exchange light through one link and the number of links
+// grows about linearly with the number of input polygons.
+//
+// A cluster's light leaves and arrives through six axis lobes (+x, −x, +y, −y, +z, −z): a
+// surface of normal n and exitance B puts B·A·max(0, ±n_a) into lobe ±a, and radiates toward
+// the unit direction ω with intensity (1/π) Σ_a |ω_a| lobe[a, sign ω_a]; irradiance arriving
+// from direction d is stored in the lobes the same way and read back by each surface with its
+// own normal. Both are exact for axis-aligned surfaces (walls, floors, ceilings, furniture
+// boxes) and approximate for tilted ones, whose links the refinement oracle splits when the
+// transfer matters.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/rgb.h"
+#include "core/vec.h"
+#include "hierarchy.h"
+
+namespace penumbra::solver {
+
+/// A node of hierarchical radiosity: an element (triangle) of the Hierarchy, or a cluster
+/// (the top bit set; the rest is the index in the ClusterTree).
+using NodeRef = std::uint32_t;
+inline constexpr NodeRef k_cluster_bit = 0x80000000u;
+constexpr bool is_cluster(NodeRef n) { return (n & k_cluster_bit) != 0; }
+constexpr NodeRef cluster_ref(std::uint32_t c) { return c | k_cluster_bit; }
+constexpr std::uint32_t cluster_index(NodeRef n) { return n & ~k_cluster_bit; }
+
+/// Values in the six axis lobes, index 2a for +a and 2a + 1 for −a.
+using Lobes = std::array<Rgb, 6>;
+
+/// Index of the lobe along axis \p a that holds direction component \p component.
+constexpr int lobe_index(int a, double component) { return 2 * a + (component < 0 ? 1 : 0); }
+
+/// Σ_a |v_a| · lobes[a, sign v_a]: a surface (or cluster) of lobes \p lobes seen along v.
+Rgb lobe_projection(const Lobes& lobes, const Vec3& v);
+
+/// Adds value · |d_a| to lobe [a, sign d_a] for each axis.
+void lobe_deposit(Lobes& lobes, const Vec3& d, const Rgb& value);
+
+/// The lobes of a surface of normal \p n carrying \p value per unit area over \p area.
+Lobes surface_lobes(const Vec3& n, double area, const Rgb& value);
+
+struct ClusterTree {
+    std::vector<Vec3> lo, hi;   ///< bounds of the elements' vertices
+    std::vector<double> area;   ///< summed area of the elements
+    std::vector<std::int32_t> parent; ///< −1 for the top cluster (index 0)
+    /// Children of cluster c are children[child_begin[c] .. child_begin[c + 1]): clusters, or
+    /// root elements in leaf clusters. Parents precede their children.
+    std::vector<std::uint32_t> child_begin;
+    std::vector<NodeRef> children;
+
+    std::size_t size() const { return area.size(); }
+    Vec3 centre(std::uint32_t c) const { return (lo[c] + hi[c]) * 0.5; }
+    double radius(std::uint32_t c) const { return 0.5 * length(hi[c] - lo[c]); }
+};
+
+/// \brief Clusters over the roots of \p h: median splits along the longest axis of the
+///        centroids' bounds until a cluster holds at most \p leaf_size roots. Deterministic.
+ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size = 8);
+
+/// \brief Per cluster, the summed lobes of its roots, root r carrying \p value[r] per unit
+///        area (its radiosity for exitance lobes, 1 for area lobes). \p out is resized.
+void pull_lobes(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& value,
+                std::vector<Lobes>& out);
+
+} // namespace penumbra::solver

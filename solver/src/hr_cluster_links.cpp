@@ -1,0 +1,320 @@
+// Cluster links of hierarchical radiosity (see cluster_tree.h): creation, visibility and
+// refinement. Refinement starts from the top cluster's link to itself; a cluster's self-link
+// is split into links between all pairs of its children (and their own self-links) once the
+// cluster carries light; other cluster links are split while the oracle's estimate of their
+// error exceeds the threshold, at the cluster end of a cluster–element link, else at the
+// larger end. Pairs of elements become ordinary links.
+//
+// Oracle: the irradiance the link brings to a surface facing the source (by the unbounded
+// point kernel), times the relative error of the point approximation (2 × the bounding radii
+// over the distance, at most 4) where it is visible, plus the uncertainty of its visibility (all of it for partly occluded links,
+// a quarter of the occluded part otherwise: four rays cannot tell 0 from 0.2).
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "form_factor.h"
+#include "hr_links.h"
+
+namespace penumbra::solver {
+
+namespace {
+
+constexpr int k_cluster_rays = 4;
+constexpr int k_facing_tries = 8;
+constexpr double k_max_size_factor = 4.0;
+
+enum ClusterDecision : std::uint8_t { keep = 0, split_receiver, split_source, split_self };
+
+} // namespace
+
+template <typename Fn>
+void LinkSet::for_each_child(NodeRef n, Fn&& fn) const {
+    if (is_cluster(n)) {
+        const std::uint32_t c = cluster_index(n);
+        for (std::uint32_t k = tree_->child_begin[c]; k < tree_->child_begin[c + 1]; ++k)
+            fn(tree_->children[k]);
+        return;
+    }
+    for (int c = 0; c < 4; ++c)
+        fn(NodeRef(h_.first_child[n] + c));
+}
+
+Vec3 LinkSet::node_centre(NodeRef n) const {
+    return is_cluster(n) ? tree_->centre(cluster_index(n)) : h_.centroid(n);
+}
+
+double LinkSet::node_radius(NodeRef n) const {
+    if (is_cluster(n))
+        return tree_->radius(cluster_index(n));
+    const Vec3 c = h_.centroid(n);
+    double r = 0;
+    for (const Vec3& v : h_.triangle[n])
+        r = std::max(r, length(v - c));
+    return r;
+}
+
+bool LinkSet::splittable(NodeRef n) const {
+    return is_cluster(n) || !h_.is_leaf(n) || h_.area[n] > settings_.min_area;
+}
+
+Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec3& normal) const {
+    Vec3 x;
+    for (int attempt = 0; attempt < k_facing_tries; ++attempt) {
+        NodeRef e = n;
+        while (is_cluster(e)) { // a root below the cluster, chosen by area
+            const std::uint32_t c = cluster_index(e);
+            double u = rng.next_double() * tree_->area[c];
+            const std::uint32_t end = tree_->child_begin[c + 1];
+            for (std::uint32_t k = tree_->child_begin[c]; k < end; ++k) {
+                e = tree_->children[k];
+                u -= is_cluster(e) ? tree_->area[cluster_index(e)] : h_.area[e];
+                if (u < 0)
+                    break;
+            }
+        }
+        x = sample_triangle(h_.triangle[e], rng.next_double(), rng.next_double());
+        normal = h_.normal[e];
+        if (!is_cluster(n) || dot(toward - x, normal) > 0)
+            return x;
+    }
+    normal = Vec3{};
+    return x;
+}
+
+bool LinkSet::faces_box(std::uint32_t c, NodeRef other) const {
+    Vec3 lo, hi;
+    if (is_cluster(other)) {
+        lo = tree_->lo[cluster_index(other)];
+        hi = tree_->hi[cluster_index(other)];
+    } else {
+        lo = hi = h_.triangle[other][0];
+        for (const Vec3& v : h_.triangle[other]) {
+            lo = min(lo, v);
+            hi = max(hi, v);
+        }
+    }
+    // A lobe +a can see the other node if some of it lies beyond the cluster's low side.
+    const double eps = 1e-9 * h_.diagonal;
+    for (std::size_t a = 0; a < 3; ++a) {
+        if (area_lobes_[c][2 * a].max_component() > 0 && hi[a] > tree_->lo[c][a] + eps)
+            return true;
+        if (area_lobes_[c][2 * a + 1].max_component() > 0 && lo[a] < tree_->hi[c][a] - eps)
+            return true;
+    }
+    return false;
+}
+
+ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
+    ClusterLink link;
+    link.receiver = q;
+    link.source = p;
+    if (q == p) {
+        link.self = 1;
+        return link;
+    }
+    const Vec3 cq = node_centre(q), cp = node_centre(p);
+    const double rq = node_radius(q), rp = node_radius(p);
+    const Vec3 delta = cp - cq;
+    const double r = length(delta);
+    const Vec3 d = r > 0 ? delta / r : Vec3(0, 0, 1);
+    const double eps = 1e-9 * h_.diagonal;
+    // An element sees nothing of a node wholly behind its plane, nor lights it.
+    if (!is_cluster(q) && dot(cp - h_.triangle[q][0], h_.normal[q]) + rp <= eps)
+        return link;
+    if (!is_cluster(p) && dot(cq - h_.triangle[p][0], h_.normal[p]) + rq <= eps)
+        return link;
+    if (is_cluster(q) && !faces_box(cluster_index(q), p))
+        return link;
+    if (is_cluster(p) && !faces_box(cluster_index(p), q))
+        return link;
+    link.d = Vec3f(d);
+
+    // The distance term 1/(π d²) is averaged over the rays' end points (the point kernel at
+    // the centres alone underestimates it: the mean of 1/d² exceeds 1/r²), bounded where the
+    // nodes nearly touch: such links carry light only while the oracle finds it negligible.
+    const double closest = 0.25 * (rq + rp);
+    Pcg32 rng = Pcg32::for_stream(RngPurpose::cluster_visibility, q, p, 0, settings_.rows.seed);
+    std::vector<Segment> segments;
+    std::vector<double> kernel;
+    for (int k = 0; k < k_cluster_rays; ++k) {
+        Vec3 nq, np;
+        const Vec3 xq = sample_facing_point(q, cp, rng, nq);
+        const Vec3 xp = sample_facing_point(p, cq, rng, np);
+        if (nq == Vec3{} || np == Vec3{})
+            continue; // no surface of a cluster faces the other end
+        const Vec3 from = xq + nq * settings_.offset, to = xp + np * settings_.offset;
+        segments.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
+        const double dd = std::max(dot(xp - xq, xp - xq), closest * closest);
+        kernel.push_back(1.0 / (k_pi * dd));
+    }
+    std::vector<std::uint8_t> blocked(segments.size());
+    visibility_.occluded(segments, blocked);
+    std::size_t open = 0;
+    double g_open = 0, g_all = 0;
+    for (std::size_t k = 0; k < segments.size(); ++k) {
+        g_all += kernel[k];
+        if (!blocked[k]) {
+            ++open;
+            g_open += kernel[k];
+        }
+    }
+    if (segments.empty()) {
+        const double reach = std::max(r, closest);
+        link.g = float(1.0 / (k_pi * reach * reach));
+        link.v = 1.0f;
+        return link;
+    }
+    // g · v = the mean over the rays of V / (π d²); g alone the unoccluded mean.
+    link.v = float(double(open) / double(segments.size()));
+    link.g = float(open > 0 ? g_open / double(open) : g_all / double(segments.size()));
+    link.partial = open > 0 && open < segments.size();
+    return link;
+}
+
+double LinkSet::cluster_link_error(const ClusterLink& link, const std::vector<Rgb>& b) const {
+    const std::vector<Lobes>& exitance = *exitance_;
+    if (link.self) // its parts could bring each other up to its brightest radiosity
+        return double((*peak_)[cluster_index(link.receiver)]);
+    const NodeRef q = link.receiver, p = link.source;
+    const Vec3 d(link.d);
+    const double rq = node_radius(q), rp = node_radius(p);
+    const double r = length(node_centre(p) - node_centre(q));
+    const double size_factor = r > 0 ? std::min(k_max_size_factor, 2.0 * (rq + rp) / r)
+                                     : k_max_size_factor;
+    // Σ B A cos toward the receiver, relaxed by the angle the pair subtends: over a wide
+    // angle the direction between the parts differs from the centres' (a lamp in one half of a
+    // cluster pair radiates down onto the floor of the other half, not sideways).
+    const double spread = r > 0 ? std::min(1.0, (rq + rp) / r) : 1.0;
+    double intensity;
+    if (is_cluster(p)) {
+        const Lobes& lobes = exitance[cluster_index(p)];
+        double widest = 0;
+        for (const Rgb& lobe : lobes)
+            widest = std::max(widest, double(lobe.max_component()));
+        intensity = double(lobe_projection(lobes, -d).max_component()) + spread * widest;
+    } else {
+        const double cosine = std::clamp(dot(h_.normal[p], -d) + spread, 0.0, 1.0);
+        intensity = double(b[p].max_component()) * h_.area[p] * cosine;
+    }
+    const double r_floor = 1e-6 * h_.diagonal; // coincident centres: refine, without overflow
+    const double open_irradiance = intensity / (k_pi * std::max(r * r, r_floor * r_floor));
+    const double v = double(link.v);
+    return open_irradiance * (v * size_factor + (link.partial ? 1.0 : 0.25 * (1.0 - v)));
+}
+
+bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
+    std::vector<std::uint8_t> decision(cluster_links_.size(), keep);
+    parallel_for_index(cluster_links_.size(), 256, [&](std::size_t k) {
+        const ClusterLink& l = cluster_links_[k];
+        if (cluster_link_error(l, b) <= settings_.cluster_threshold)
+            return;
+        if (l.self) {
+            decision[k] = split_self;
+            return;
+        }
+        // Split the cluster end of a cluster–element link (element pairs get the exact form
+        // factor and the element oracle), else the larger end.
+        const NodeRef q = l.receiver, p = l.source;
+        const bool sq = splittable(q), sp = splittable(p);
+        const bool receiver_first = is_cluster(q) != is_cluster(p)
+                                        ? is_cluster(q)
+                                        : node_radius(q) >= node_radius(p);
+        if (sq && (receiver_first || !sp))
+            decision[k] = split_receiver;
+        else if (sp)
+            decision[k] = split_source;
+    });
+    if (std::none_of(decision.begin(), decision.end(), [](std::uint8_t d) { return d != keep; }))
+        return false;
+    for (std::size_t k = 0; k < cluster_links_.size(); ++k) {
+        const ClusterLink& l = cluster_links_[k];
+        const NodeRef n = decision[k] == split_receiver ? l.receiver : l.source;
+        if ((decision[k] == split_receiver || decision[k] == split_source) && !is_cluster(n))
+            subdivide(n, b, b_range);
+    }
+    std::vector<ClusterLink> next;
+    std::vector<std::pair<NodeRef, NodeRef>> cluster_pairs, element_pairs;
+    auto add_pair = [&](NodeRef q, NodeRef p) {
+        if (is_cluster(q) || is_cluster(p))
+            cluster_pairs.emplace_back(q, p);
+        else if (linkable(q, p))
+            element_pairs.emplace_back(q, p);
+    };
+    for (std::size_t k = 0; k < cluster_links_.size(); ++k) {
+        const ClusterLink& l = cluster_links_[k];
+        switch (decision[k]) {
+        case keep:
+            next.push_back(l);
+            break;
+        case split_self:
+            for_each_child(l.receiver, [&](NodeRef i) {
+                for_each_child(l.receiver, [&](NodeRef j) {
+                    if (i != j)
+                        add_pair(i, j);
+                    else if (is_cluster(i))
+                        cluster_pairs.emplace_back(i, i);
+                });
+            });
+            break;
+        case split_receiver:
+            for_each_child(l.receiver, [&](NodeRef c) { add_pair(c, l.source); });
+            break;
+        case split_source:
+            for_each_child(l.source, [&](NodeRef c) { add_pair(l.receiver, c); });
+            break;
+        }
+    }
+    std::vector<ClusterLink> made(cluster_pairs.size());
+    parallel_for_index(cluster_pairs.size(), 16, [&](std::size_t i) {
+        made[i] = make_cluster_link(cluster_pairs[i].first, cluster_pairs[i].second);
+    });
+    for (const ClusterLink& l : made)
+        if (l.self || l.g > 0)
+            next.push_back(l);
+    cluster_links_.swap(next);
+    std::vector<Link> element_links(element_pairs.size());
+    parallel_for_index(element_pairs.size(), 16, [&](std::size_t i) {
+        element_links[i] = make_link(element_pairs[i].first, element_pairs[i].second);
+    });
+    for (const Link& l : element_links)
+        if (l.ff > 0)
+            links_.push_back(l);
+    return true;
+}
+
+void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
+                            const std::vector<float>& peak) {
+    tree_ = &tree;
+    exitance_ = &exitance;
+    peak_ = &peak;
+    pull_lobes(tree, h_, std::vector<Rgb>(h_.root_count, Rgb(1.0f)), area_lobes_);
+    links_.clear();
+    cluster_links_ = {make_cluster_link(cluster_ref(0), cluster_ref(0))};
+    link_lights();
+    sort_and_index();
+}
+
+void LinkSet::index_cluster_links() {
+    std::stable_sort(cluster_links_.begin(), cluster_links_.end(),
+                     [](const ClusterLink& a, const ClusterLink& b) {
+                         return a.receiver != b.receiver ? a.receiver < b.receiver
+                                                         : a.source < b.source;
+                     });
+    cl_elements_.assign(h_.size() + 1, 0);
+    cl_clusters_.assign(tree_->size() + 1, 0);
+    for (const ClusterLink& l : cluster_links_) {
+        if (is_cluster(l.receiver))
+            ++cl_clusters_[cluster_index(l.receiver) + 1];
+        else
+            ++cl_elements_[l.receiver + 1];
+    }
+    for (std::size_t n = 0; n < h_.size(); ++n)
+        cl_elements_[n + 1] += cl_elements_[n];
+    cl_clusters_[0] = cl_elements_.back();
+    for (std::size_t c = 0; c < tree_->size(); ++c)
+        cl_clusters_[c + 1] += cl_clusters_[c];
+}
+
+} // namespace penumbra::solver

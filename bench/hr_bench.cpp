@@ -16,7 +16,7 @@
 // during the output stage, which the CLI has freed by then.
 //
 // Usage: hr_bench [--sizes 1k,2k,8k,32k] [--max-seconds S] [--threads N] [--epsilon E]
-//                 [--raw-rays N] [--no-solve] [-v]
+//                 [--clustering auto|on|off] [--raw-rays N] [--no-solve] [-v]
 
 #include "app/pipeline.h"
 #include "core/error.h"
@@ -58,6 +58,7 @@ struct Options {
     double max_seconds = 600;
     int threads = 0;
     double epsilon = 0;
+    std::string clustering; ///< empty: the scene's (auto)
     std::int64_t raw_rays = 1'000'000;
     bool no_solve = false;
     bool verbose = false;
@@ -202,6 +203,8 @@ Row run_size(std::int64_t target, const Options& options, const Context& ctx) {
     bench::mesh_input_as_is(scene);
     if (options.epsilon > 0)
         scene.solver.epsilon = options.epsilon;
+    if (!options.clustering.empty())
+        scene.solver.clustering = options.clustering;
     validate_scene(scene);
     row.triangles = bench::input_triangle_count(scene);
     auto stage = [&](double& seconds, const char* name, const std::function<void()>& run) {
@@ -284,6 +287,8 @@ void run_in_child(const std::string& size, const Options& options) {
     args.insert(args.end(), {"--raw-rays", std::to_string(options.raw_rays)});
     if (options.epsilon > 0)
         args.insert(args.end(), {"--epsilon", std::to_string(options.epsilon)});
+    if (!options.clustering.empty())
+        args.insert(args.end(), {"--clustering", options.clustering});
     if (options.no_solve)
         args.push_back("--no-solve");
     if (options.verbose)
@@ -331,6 +336,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 1024));
     cli.add_option("--epsilon", o.epsilon, "solver.epsilon (default: the scene's, 1e-3)")
         ->check(CLI::PositiveNumber);
+    cli.add_option("--clustering", o.clustering, "solver.clustering (default: the scene's, auto)")
+        ->check(CLI::IsMember({"auto", "on", "off"}));
     cli.add_option("--raw-rays", o.raw_rays, "segments for the raw throughput")
         ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 32));
     cli.add_flag("--no-solve", o.no_solve,

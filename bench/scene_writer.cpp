@@ -146,6 +146,7 @@ Json solver_json(const SolverSettings& s) {
     put_changed(j, "residual", s.residual, d.residual);
     put_changed(j, "epsilon", s.epsilon, d.epsilon);
     put_changed(j, "oracle", s.oracle, d.oracle);
+    put_changed(j, "clustering", s.clustering, d.clustering);
     put_changed(j, "min_area", s.min_area, d.min_area);
     put_changed(j, "max_sweeps", s.max_sweeps, d.max_sweeps);
     put_changed(j, "ambient", s.ambient, d.ambient);

@@ -3,6 +3,8 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <memory>
 #include <new>
 #include <string>
 
@@ -46,6 +48,8 @@ struct BakeFlags {
     double epsilon = 0;
     double min_area_m2 = 0;
     std::string clustering;
+    std::string reuse;
+    bool no_state = false;
     std::int64_t series_every_shots = 0;
 };
 
@@ -84,12 +88,23 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
     if (!flags.clustering.empty())
         scene.solver.clustering = flags.clustering;
     check_output_dir(flags.output);
+    std::shared_ptr<const solver::HierarchicalState> previous;
+    if (!flags.reuse.empty()) {
+        if (scene.solver.method != "hierarchical")
+            throw ConfigError(fmt::format("--reuse needs the hierarchical method, not '{}'",
+                                          scene.solver.method));
+        namespace fs = std::filesystem;
+        const fs::path given(flags.reuse);
+        previous = solver::read_hierarchical_state(
+            fs::is_directory(given) ? (given / app::k_solver_state_file).string() : flags.reuse);
+    }
     app::BakeOptions options;
+    options.reuse = previous.get();
     options.render = !flags.no_render;
     options.series_every_shots = flags.series_every_shots;
     options.series_dir = flags.output;
     app::BakeResult result = app::bake(scene, options, ctx);
-    app::write_outputs(flags.output, scene, result);
+    app::write_outputs(flags.output, scene, result, !flags.no_state);
     const auto& pb = result.stats.power;
     ctx.info("wrote {}: {} elements, {} rays, emitted {:.4g} lm, absorbed {:.4g} lm, escaped "
              "{:.4g} lm, unshot {:.4g} lm",
@@ -153,6 +168,12 @@ int main(int argc, char** argv) {
                          "elements (off), or cluster above 3 000 elements (auto; overrides "
                          "solver.clustering)")
         ->check(CLI::IsMember({"auto", "on", "off"}));
+    bake_cmd->add_option("--reuse", bake.reuse,
+                         "hierarchical: re-solve from an earlier bake's folder (or its "
+                         "solver_state.bin): same geometry, new reflectances or emissions; keeps "
+                         "its links and refines them where the new radiosities need it");
+    bake_cmd->add_flag("--no-state", bake.no_state,
+                       "hierarchical: do not write solver_state.bin (it holds every link)");
     bake_cmd->add_option("--series", bake.series_every_shots,
                          "write the solution every K shots as series/mesh_*.vtu + series.pvd")
         ->check(CLI::PositiveNumber);

@@ -60,8 +60,9 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
             };
         }
         solver::SolveResult solved = solver::solve(scene, result.mesh, *rt, ctx, &result.stats,
-                                                   series ? &observer : nullptr);
+                                                   series ? &observer : nullptr, options.reuse);
         result.solution = std::move(solved.solution);
+        result.solver_state = std::move(solved.state);
         if (solved.refined_mesh) {
             // The solution lives on the leaf mesh: trace that from now on.
             result.rays += rt->rays_traced();
@@ -89,7 +90,8 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
     return result;
 }
 
-void write_outputs(const std::string& dir, const Scene& scene, const BakeResult& result) {
+void write_outputs(const std::string& dir, const Scene& scene, const BakeResult& result,
+                   bool save_state) {
     namespace fs = std::filesystem;
     std::error_code ec;
     fs::create_directories(dir, ec);
@@ -116,6 +118,10 @@ void write_outputs(const std::string& dir, const Scene& scene, const BakeResult&
     }
     if (!scene.sensors.empty())
         write_text_file(path("sensors.csv"), sensors_csv(scene, result));
+    if (result.solver_state && save_state)
+        solver::write_hierarchical_state(*result.solver_state, path(k_solver_state_file));
+    else
+        fs::remove(path(k_solver_state_file), ec);
     write_text_file(path("summary.json"), summary_json(scene, result));
 }
 

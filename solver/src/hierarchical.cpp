@@ -16,9 +16,11 @@
 #include <cmath>
 
 #include "cluster_transport.h"
+#include "core/error.h"
 #include "core/parallel.h"
 #include "hierarchy.h"
 #include "hr_links.h"
+#include "hr_state.h"
 #include "leaf_mesh.h"
 #include "vertex_values.h"
 
@@ -186,11 +188,31 @@ Solved solve_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clus
 
 } // namespace
 
+namespace {
+
+// A re-solve: the saved hierarchy with the new scene's reflectances and emissions.
+Hierarchy reused_hierarchy(const RadiosityMesh& mesh, const HierarchicalState& state) {
+    if (state.mesh_hash != mesh_geometry_hash(mesh) ||
+        state.hierarchy.root_count != mesh.element_count())
+        throw ConfigError("the reused solver state is of another geometry (the mesh differs): "
+                          "only reflectances and emissions may change; bake without --reuse");
+    Hierarchy h = state.hierarchy;
+    for (std::size_t n = 0; n < h.size(); ++n) {
+        const Patch& p = mesh.patches[h.patch[n]];
+        h.emission[n] = p.emission;
+        h.reflectance[n] = p.reflectance;
+    }
+    return h;
+}
+
+} // namespace
+
 SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
                                const VisibilityQuery& visibility, const Context& ctx,
-                               SolveStats* stats, const SolveObserver* observer) {
-    Hierarchy h(mesh);
-    std::vector<std::int32_t> twin = mesh.element_twin;
+                               SolveStats* stats, const SolveObserver* observer,
+                               const HierarchicalState* reuse) {
+    Hierarchy h = reuse ? reused_hierarchy(mesh, *reuse) : Hierarchy(mesh);
+    std::vector<std::int32_t> twin = reuse ? reuse->twin : mesh.element_twin;
     RefineSettings rs;
     rs.oracle = scene.solver.oracle == "bf" ? Oracle::bf : Oracle::variation;
     rs.rows.visibility_rays = scene.solver.visibility_rays;
@@ -201,25 +223,36 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
                                             : std::pow(mesh.scene_diagonal / 200.0, 2);
     LinkSet links(h, twin, visibility, scene.point_lights, rs);
     NodeValues v;
-    v.b = h.emission;
+    v.b = reuse ? reuse->radiosity : h.emission;
     v.b_range.assign(h.size(), 0.0f);
     ProgressStage progress(ctx, "hierarchical");
     Clusters clusters;
-    clusters.enabled = scene.solver.clustering == "on" ||
-                       (scene.solver.clustering == "auto" && h.root_count > k_clustering_auto_roots);
+    clusters.enabled =
+        reuse ? reuse->clustered
+              : scene.solver.clustering == "on" ||
+                    (scene.solver.clustering == "auto" && h.root_count > k_clustering_auto_roots);
     if (clusters.enabled) {
         clusters.tree = build_cluster_tree(h);
         init_cluster_values(clusters.tree, h, v.b, clusters.values);
-        links.link_clusters(clusters.tree, clusters.values.exitance, clusters.values.peak);
+        if (reuse)
+            links.attach_clusters(clusters.tree, clusters.values.exitance, clusters.values.peak);
+        else
+            links.link_clusters(clusters.tree, clusters.values.exitance, clusters.values.peak);
         ctx.info("hierarchical: {} clusters over {} elements", clusters.tree.size(),
                  h.root_count);
-    } else {
+    }
+    if (reuse) {
+        links.restore(reuse->links, reuse->cluster_links);
+        ctx.info("hierarchical: reusing {} nodes and {} links", h.size(), links.link_count());
+    } else if (!clusters.enabled) {
         links.link_roots();
     }
     links.set_threshold(scene.solver.epsilon * radiosity_scale(h, links));
     if (clusters.enabled)
         links.set_cluster_threshold(scene.solver.epsilon * emitted / clusters.tree.area[0]);
     SweepLog log{mesh, observer, stats};
+    if (reuse) // the oracle should see the new materials' radiosities
+        solve_links(h, links, v, clusters, scene.solver, emitted, log);
     for (int cycle = 0; cycle < k_max_cycles; ++cycle) {
         const bool changed = links.refine(v.b, v.b_range);
         Solved s = solve_links(h, links, v, clusters, scene.solver, emitted, log);
@@ -251,6 +284,15 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     }
     if (observer && observer->on_pass)
         observer->on_pass(root_snapshot(mesh, h, v), log.total, 0.0, true);
+    auto state = std::make_shared<HierarchicalState>();
+    state->mesh_hash = mesh_geometry_hash(mesh);
+    state->clustered = clusters.enabled;
+    state->twin = twin;
+    state->links = links.links();
+    state->cluster_links = links.cluster_links();
+    state->radiosity = v.b;
+    state->hierarchy = std::move(h);
+    result.state = std::move(state);
     result.refined_mesh = std::move(leaf.mesh);
     return result;
 }

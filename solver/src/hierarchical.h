@@ -19,6 +19,7 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
 ///        its solution.
 SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
                                const VisibilityQuery& visibility, const Context& ctx,
-                               SolveStats* stats, const SolveObserver* observer);
+                               SolveStats* stats, const SolveObserver* observer,
+                               const HierarchicalState* reuse);
 
 } // namespace penumbra::solver

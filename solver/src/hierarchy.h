@@ -22,6 +22,7 @@ struct Hierarchy {
     std::size_t root_count = 0;
     double diagonal = 0;
 
+    Hierarchy() = default;
     /// Roots = the mesh's elements, in element order.
     explicit Hierarchy(const RadiosityMesh& mesh);
     std::size_t size() const { return area.size(); }

@@ -284,12 +284,17 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
     return true;
 }
 
-void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
-                            const std::vector<float>& peak) {
+void LinkSet::attach_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
+                              const std::vector<float>& peak) {
     tree_ = &tree;
     exitance_ = &exitance;
     peak_ = &peak;
     pull_lobes(tree, h_, std::vector<Rgb>(h_.root_count, Rgb(1.0f)), area_lobes_);
+}
+
+void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
+                            const std::vector<float>& peak) {
+    attach_clusters(tree, exitance, peak);
     links_.clear();
     cluster_links_ = {make_cluster_link(cluster_ref(0), cluster_ref(0))};
     link_lights();

@@ -93,6 +93,13 @@ void LinkSet::link_roots() {
     sort_and_index();
 }
 
+void LinkSet::restore(std::vector<Link> links, std::vector<ClusterLink> cluster_links) {
+    links_ = std::move(links);
+    cluster_links_ = std::move(cluster_links);
+    link_lights();
+    sort_and_index();
+}
+
 void LinkSet::link_lights() {
     const std::size_t r = h_.root_count;
     light_links_.clear();

@@ -73,6 +73,12 @@ public:
     /// refine().
     void link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
                        const std::vector<float>& peak);
+    /// Uses \p tree (as link_clusters) without making links.
+    void attach_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
+                         const std::vector<float>& peak);
+    /// Takes saved links (a re-solve) and links the lights anew (their intensities may have
+    /// changed).
+    void restore(std::vector<Link> links, std::vector<ClusterLink> cluster_links);
     /// Sets the refinement threshold (W/m²).
     void set_threshold(double threshold) { settings_.threshold = threshold; }
     /// Sets the cluster links' refinement threshold (W/m²).

@@ -68,12 +68,16 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
 
 SolveResult solve(const Scene& scene, const RadiosityMesh& mesh,
                   const VisibilityQuery& visibility, const Context& ctx, SolveStats* stats,
-                  const SolveObserver* observer) {
+                  const SolveObserver* observer, const HierarchicalState* reuse) {
     const std::string& method = scene.solver.method;
     if (method == "hierarchical")
         return run_in_arena(ctx, [&] {
-            return solve_hierarchical(scene, mesh, visibility, ctx, stats, observer);
+            return solve_hierarchical(scene, mesh, visibility, ctx, stats, observer, reuse);
         });
+    if (reuse)
+        throw ConfigError(fmt::format("a saved solver state is reused by the hierarchical "
+                                      "method only, not '{}'",
+                                      method));
     if (method == "shooting") {
         SolveResult result;
         result.solution = solve_shooting(scene, mesh, visibility, ctx, stats, observer);

@@ -120,11 +120,37 @@ TEST(Cli, BakeWritesEveryOutput) {
     const fs::path out = dir / "out";
     RunResult r = run_cli("bake " + (dir / "ok.json").string() + " -o " + out.string() + " -q");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    for (const char* f : {"mesh.vtu", "render.exr", "render.png", "sensors.csv", "summary.json"})
+    for (const char* f : {"mesh.vtu", "render.exr", "render.png", "sensors.csv", "summary.json",
+                          "solver_state.bin"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     for (const auto& entry : fs::directory_iterator(out))
         EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
+    // A re-solve from that folder, into another.
+    r = run_cli("bake " + (dir / "ok.json").string() + " -o " + (dir / "again").string() +
+                " --reuse " + out.string() + " --no-render --no-state -q");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "again" / "mesh.vtu"));
+    EXPECT_FALSE(fs::exists(dir / "again" / "solver_state.bin"));
     fs::remove_all(dir);
+}
+
+TEST_F(CliBadInput, ReuseOfAMissingOrWrongState) {
+    write(dir_ / "ok.json", good_scene());
+    const fs::path out = dir_ / "out";
+    RunResult r = run_cli("bake " + (dir_ / "ok.json").string() + " -o " + out.string() +
+                          " --reuse " + (dir_ / "nowhere").string() + " -q");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("nowhere"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    r = run_cli("bake " + (dir_ / "ok.json").string() + " -o " + out.string() + " --reuse " +
+                (dir_ / "ok.json").string() + " -q");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("not a Penumbra solver state"), std::string::npos) << r.err;
+    r = run_cli("bake " + (dir_ / "ok.json").string() + " -o " + out.string() + " --reuse " +
+                (dir_ / "ok.json").string() + " --method shooting -q");
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_NE(r.err.find("--reuse"), std::string::npos) << r.err;
 }
 
 } // namespace

@@ -2,6 +2,7 @@
 // The bake pipeline (mesh → solve → sensors → render → files), shared by the CLI, the viewer
 // and the tests. main() only parses flags and maps errors to exit codes.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,8 @@ struct BakeResult {
     std::uint64_t rays = 0;
     std::string series_dir; ///< where the solve's series was written (empty if none)
     std::size_t series_steps = 0;
+    /// Hierarchical: the hierarchy, links and radiosities, for a later re-solve.
+    std::shared_ptr<const solver::HierarchicalState> solver_state;
 };
 
 struct BakeOptions {
@@ -37,16 +40,24 @@ struct BakeOptions {
     /// as the last step, to series_dir/series/ and series_dir/series.pvd (viewer::SeriesWriter).
     std::int64_t series_every_shots = 0;
     std::string series_dir;
+    /// Hierarchical: re-solve from this saved state (same geometry; reflectances and
+    /// emissions from the scene).
+    const solver::HierarchicalState* reuse = nullptr;
 };
 
 /// \brief Runs mesher, solver, sensors and renderer on \p scene.
 BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& ctx);
 
 /// \brief Writes mesh.vtu, render.exr/png, sensors.csv, sensors.vtp, discontinuities.vtp (when
-///        the mesh has any) and summary.json into \p dir (each file atomically). Removes a
+///        the mesh has any), solver_state.bin (hierarchical, when \p save_state) and
+///        summary.json into \p dir (each file atomically). Removes a
 ///        sensors.vtp, discontinuities.vtp or series (series.pvd, series/) that an earlier bake
 ///        left in \p dir and this one did not write. Throws ExternalError/ConfigError.
-void write_outputs(const std::string& dir, const Scene& scene, const BakeResult& result);
+void write_outputs(const std::string& dir, const Scene& scene, const BakeResult& result,
+                   bool save_state = true);
+
+/// The solver state file a bake writes into its output folder.
+inline constexpr const char* k_solver_state_file = "solver_state.bin";
 
 /// \brief The options of `penumbra view` as the CLI gives them (see viewer/view.h, which
 ///        this library wraps so that the CLI links the pipeline only).

@@ -4,7 +4,9 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/context.h"
@@ -48,17 +50,33 @@ struct SolveObserver {
 
 /// \brief A solve's output: the solution, and for hierarchical radiosity the leaf mesh it
 ///        lives on (without T-vertices); otherwise the solution is on the input mesh.
+/// The hierarchy, links and radiosities of a hierarchical solve (opaque): a re-solve after a
+/// change of reflectances or emissions (same geometry) starts from it.
+struct HierarchicalState;
+
 struct SolveResult {
     std::optional<RadiosityMesh> refined_mesh;
     Solution solution;
+    std::shared_ptr<const HierarchicalState> state; ///< hierarchical only
 };
 
+/// \brief Writes \p state to \p path (binary, versioned; atomically).
+void write_hierarchical_state(const HierarchicalState& state, const std::string& path);
+
+/// \brief Reads a state written by write_hierarchical_state.
+/// \throws InputError naming \p path if it is missing, truncated or not a state file.
+std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::string& path);
+
 /// \brief Solves with the method of scene.solver.method ("hierarchical", "shooting",
-///        "jacobi", "gauss_seidel", "matrix").
-/// \throws ConfigError for an unknown method or a scene too large for "matrix".
+///        "gathering", "jacobi", "gauss_seidel", "matrix"). Hierarchical: with \p reuse, keeps
+///        its hierarchy and links, takes reflectances and emissions from \p scene, re-runs
+///        the refinement oracle and iterates from its radiosities.
+/// \throws ConfigError for an unknown method, a scene too large for "matrix", or a \p reuse
+///         state of another geometry or with another method.
 SolveResult solve(const Scene& scene, const RadiosityMesh& mesh,
                   const VisibilityQuery& visibility, const Context& ctx,
-                  SolveStats* stats = nullptr, const SolveObserver* observer = nullptr);
+                  SolveStats* stats = nullptr, const SolveObserver* observer = nullptr,
+                  const HierarchicalState* reuse = nullptr);
 
 /// \brief Solves the radiosity of \p mesh by progressive shooting until the unshot power falls
 ///        below SolverSettings::residual of the emitted power.

@@ -6,9 +6,13 @@
 // up as the area mean). Reflectors have no radiosity before the first solve, so refinement
 // and solving alternate until refinement changes nothing.
 //
-// Deviation: form factors are receiver-side quadratures of the analytic point-to-triangle
+// Deviations: form factors are receiver-side quadratures of the analytic point-to-triangle
 // form factor (4 points, 64 for near pairs) times ray visibility, rather than Hanrahan's
-// disc approximation; front and back sides subdivide together so that leaves stay twins.
+// disc approximation; front and back sides subdivide together so that leaves stay twins; a
+// link's irradiance is pushed to the leaves of its receiver, and its source's radiosity pulled
+// from the leaves of its source, by each leaf's own form factors to the link's far ends rather
+// than evenly (hr_weights.h), so that a closed box of uniform radiosity stays uniform and
+// power is not lost where radiosity varies over a coarse source.
 
 #include "hierarchical.h"
 
@@ -21,6 +25,7 @@
 #include "hierarchy.h"
 #include "hr_links.h"
 #include "hr_state.h"
+#include "hr_weights.h"
 #include "leaf_mesh.h"
 #include "vertex_values.h"
 
@@ -36,6 +41,12 @@ struct NodeValues {
     std::vector<Rgb> b, gathered_direct, gathered_indirect, h_direct, h_indirect;
     std::vector<float> b_lo, b_hi; ///< range of the leaves' radiosity (largest channel)
     std::vector<float> b_range;    ///< b_hi − b_lo
+    /// Irradiance gathered through element links alone: what the leaf weights spread.
+    std::vector<Rgb> link_direct, link_indirect;
+    /// What each node sends through its element links: its leaves' radiosities by their emit
+    /// weights (the leaf's own radiosity for a leaf).
+    std::vector<Rgb> b_emit;
+    LeafWeights weights;
 };
 
 double emitted_power_max(const Hierarchy& h, const std::vector<PointLight>& lights) {
@@ -64,29 +75,68 @@ void gather(const Hierarchy& h, const LinkSet& links, NodeValues& v) {
     v.gathered_indirect.assign(n, Rgb{});
     const auto& offsets = links.receiver_offsets();
     const auto& all = links.links();
+    const std::vector<Rgb>& b_source = v.b_emit.size() == n ? v.b_emit : v.b;
     parallel_for_index(n, 256, [&](std::size_t q) {
         RgbD direct, indirect;
         for (std::uint32_t k = offsets[q]; k < offsets[q + 1]; ++k) {
             const Link& l = all[k];
             direct += RgbD(h.emission[l.source]) * l.ff;
-            indirect += RgbD(v.b[l.source] - h.emission[l.source]) * l.ff;
+            indirect += RgbD(b_source[l.source] - h.emission[l.source]) * l.ff;
         }
         v.gathered_direct[q] = Rgb(float(direct.r), float(direct.g), float(direct.b));
         v.gathered_indirect[q] = Rgb(float(indirect.r), float(indirect.g), float(indirect.b));
     });
+    v.link_direct = v.gathered_direct;
+    v.link_indirect = v.gathered_indirect;
     for (const LightLink& l : links.light_links()) // few; serial keeps the order fixed
         v.gathered_direct[l.receiver] += l.irradiance;
+}
+
+// Leaf x's radiosity \p b as it is sent: by x itself and, by its emit weights, as its share
+// of what each ancestor sends (whose b_emit the caller has zeroed).
+void add_emit_shares(const Hierarchy& h, NodeValues& v, std::uint32_t x, const Rgb& b) {
+    v.b_emit[x] = b;
+    for (std::int32_t a = h.parent[x]; a >= 0; a = h.parent[a])
+        v.b_emit[a] +=
+            b * float(h.area[x] / h.area[a] * v.weights.emit[v.weights.at(x, h.level[a])]);
+}
+
+// NodeValues::b_emit afresh from the leaves' radiosities, once the weights have changed.
+void pull_emit(const Hierarchy& h, NodeValues& v) {
+    v.b_emit.assign(h.size(), Rgb{});
+    parallel_for_index(h.root_count, 16, [&](std::size_t r) {
+        std::vector<std::uint32_t> stack{std::uint32_t(r)};
+        while (!stack.empty()) {
+            const std::uint32_t n = stack.back();
+            stack.pop_back();
+            if (h.is_leaf(n)) {
+                add_emit_shares(h, v, n, v.b[n]);
+                continue;
+            }
+            for (int c = 3; c >= 0; --c)
+                stack.push_back(std::uint32_t(h.first_child[n] + c));
+        }
+    });
 }
 
 // Push irradiance down and pull radiosity up in one tree; returns the node's new radiosity
 // and adds Σ A |ΔB| over the leaves to \p change.
 Rgb push_pull(const Hierarchy& h, NodeValues& v, std::uint32_t node, const Rgb& down_direct,
               const Rgb& down_indirect, double& change) {
-    const Rgb hd = down_direct + v.gathered_direct[node];
-    const Rgb hi = down_indirect + v.gathered_indirect[node];
+    Rgb hd = down_direct + v.gathered_direct[node];
+    Rgb hi = down_indirect + v.gathered_indirect[node];
+    const bool weighted = !v.weights.empty();
     Rgb b;
     if (h.is_leaf(node)) {
+        // The ancestors' element links by this leaf's receive weights rather than evenly.
+        for (std::int32_t a = weighted ? h.parent[node] : -1; a >= 0; a = h.parent[a]) {
+            const float extra = v.weights.receive[v.weights.at(node, h.level[a])] - 1.0f;
+            hd += v.link_direct[a] * extra;
+            hi += v.link_indirect[a] * extra;
+        }
         b = h.emission[node] + h.reflectance[node] * (hd + hi);
+        if (weighted)
+            add_emit_shares(h, v, node, b);
         v.h_direct[node] = hd;
         v.h_indirect[node] = hi;
         v.b_lo[node] = v.b_hi[node] = b.max_component();
@@ -95,6 +145,8 @@ Rgb push_pull(const Hierarchy& h, NodeValues& v, std::uint32_t node, const Rgb& 
                   h.area[node];
     } else {
         Rgb sum_b, sum_hd, sum_hi;
+        if (weighted)
+            v.b_emit[node] = Rgb{}; // the leaves below add their shares
         v.b_lo[node] = 1e30f;
         v.b_hi[node] = 0;
         for (int c = 0; c < 4; ++c) {
@@ -255,6 +307,10 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
         solve_links(h, links, v, clusters, scene.solver, emitted, log);
     for (int cycle = 0; cycle < k_max_cycles; ++cycle) {
         const bool changed = links.refine(v.b, v.b_range);
+        if (changed || v.weights.empty()) {
+            v.weights = leaf_weights(h, links, v.weights);
+            pull_emit(h, v);
+        }
         Solved s = solve_links(h, links, v, clusters, scene.solver, emitted, log);
         ctx.info("hierarchical: cycle {}: {} nodes, {} links, {} sweeps, change {:.2e}", cycle,
                  h.size(), links.link_count(), s.sweeps,

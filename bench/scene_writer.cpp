@@ -173,10 +173,15 @@ void put_lights_and_sensors(Json& j, const Scene& scene) {
     for (const PointLight& l : scene.point_lights) {
         // intensity = from_photometric(cd, color) with the intensity itself as the colour.
         const Rgb& c = l.intensity;
-        j["point_lights"].push_back({{"name", l.name},
-                                     {"position", xyz(l.position)},
-                                     {"intensity_cd", to_photometric(c)},
-                                     {"color", {c.r, c.g, c.b}}});
+        Json light = {{"name", l.name},
+                      {"position", xyz(l.position)},
+                      {"intensity_cd", to_photometric(c)}, // on the axis for a spot
+                      {"color", {c.r, c.g, c.b}}};
+        if (l.spot)
+            light["spot"] = {{"direction", xyz(l.spot->direction)},
+                             {"beam_deg", l.spot->beam_deg},
+                             {"cutoff_deg", l.spot->cutoff_deg}};
+        j["point_lights"].push_back(light);
     }
     for (const Sensor& s : scene.sensors)
         j["sensors"].push_back(

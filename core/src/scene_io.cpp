@@ -226,14 +226,29 @@ void validate_material(const Scene& scene, const Material& m) {
               key + ".emission_flux_lm", fmt::format("must be >= 0, got {}", *m.emission_flux_lm));
 }
 
+// The same ranges as the scene file's "spot" (scene_json.cpp), for spots built in code; the
+// direction is normalised in place.
+void validate_spot(const Scene& scene, SpotCone& spot, const std::string& key) {
+    check(is_finite(spot.direction) && length(spot.direction) > 0, scene, key + ".direction",
+          "must be a finite, non-zero vector, got " + format_vec(spot.direction));
+    spot.direction = normalize(spot.direction);
+    check(spot.cutoff_deg > 0 && spot.cutoff_deg <= 180, scene, key + ".cutoff_deg",
+          fmt::format("must be in (0, 180] (a half-angle), got {}", spot.cutoff_deg));
+    check(spot.beam_deg >= 0 && spot.beam_deg <= spot.cutoff_deg, scene, key + ".beam_deg",
+          fmt::format("must be in [0, cutoff_deg = {}] (a half-angle), got {}", spot.cutoff_deg,
+                      spot.beam_deg));
+}
+
 void validate_lights_and_sensors(Scene& scene) {
     for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
-        const PointLight& light = scene.point_lights[i];
+        PointLight& light = scene.point_lights[i];
         const std::string key = fmt::format("point_lights[{}]", i);
         check(is_finite(light.position), scene, key + ".position", "is not finite");
         const Rgb& c = light.intensity;
         check(c.is_finite() && c.r >= 0 && c.g >= 0 && c.b >= 0, scene, key,
               "intensity must be finite and >= 0, got " + format_rgb(c));
+        if (light.spot)
+            validate_spot(scene, *light.spot, key + ".spot");
     }
     for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
         Sensor& sensor = scene.sensors[i];

@@ -30,9 +30,14 @@ std::vector<Source> collect_sources(const Scene& scene, const std::vector<Surfac
         }
     }
     for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
+        const PointLight& light = scene.point_lights[i];
         Source src;
         src.id = -2 - std::int32_t(i);
-        src.vertices = {scene.point_lights[i].position};
+        src.vertices = {light.position};
+        if (light.spot) {
+            src.axis = light.spot->direction;
+            src.cos_cutoff = std::cos(light.spot->cutoff_deg * k_pi / 180.0);
+        }
         out.push_back(std::move(src));
     }
     return out;
@@ -125,6 +130,51 @@ std::vector<std::uint32_t> with_source(std::vector<std::uint32_t> skip, const So
     return skip;
 }
 
+// The parts of [a, b] inside a spot's cut-off cone ([a, b] itself for other sources). Inside
+// or not changes only where cos θ crosses cos_cutoff or dot(x − p, axis) changes sign, so
+// the predicate is tested at the middle of each piece between those roots.
+std::vector<std::pair<Vec3, Vec3>> lit_parts(const Source& src, const Vec3& a, const Vec3& b) {
+    if (src.surface >= 0 || src.cos_cutoff <= -1)
+        return {{a, b}};
+    const Vec3 u = a - src.vertices[0], w = b - a;
+    const double alpha = dot(u, src.axis), beta = dot(w, src.axis);
+    const double c2 = src.cos_cutoff * src.cos_cutoff;
+    // (α + βt)² − c² |u + t w|² = qa t² + qb t + qc
+    const double qa = beta * beta - c2 * dot(w, w);
+    const double qb = 2.0 * (alpha * beta - c2 * dot(u, w));
+    const double qc = alpha * alpha - c2 * dot(u, u);
+    std::vector<double> cuts{0.0, 1.0};
+    auto cut = [&](double t) {
+        if (t > 0 && t < 1)
+            cuts.push_back(t);
+    };
+    if (beta != 0)
+        cut(-alpha / beta);
+    if (qa != 0) {
+        const double disc = qb * qb - 4.0 * qa * qc;
+        if (disc >= 0) {
+            cut((-qb - std::sqrt(disc)) / (2.0 * qa));
+            cut((-qb + std::sqrt(disc)) / (2.0 * qa));
+        }
+    } else if (qb != 0) {
+        cut(-qc / qb);
+    }
+    std::sort(cuts.begin(), cuts.end());
+    std::vector<std::pair<Vec3, Vec3>> out;
+    bool previous_inside = false;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+        const double t0 = cuts[k], t1 = cuts[k + 1];
+        const Vec3 mid = u + w * (0.5 * (t0 + t1));
+        const bool inside = t1 > t0 && dot(mid, src.axis) > src.cos_cutoff * length(mid);
+        if (inside && previous_inside)
+            out.back().second = a + w * t1; // pieces split only by dot(x − p, axis) = 0
+        else if (inside)
+            out.emplace_back(a + w * t0, a + w * t1);
+        previous_inside = inside || (previous_inside && t1 <= t0);
+    }
+    return out;
+}
+
 // The part of [a, b] in front of the source; false if none.
 bool clip_in_front(const Source& src, Vec3& a, Vec3& b, double eps) {
     if (src.surface < 0)
@@ -139,17 +189,11 @@ bool clip_in_front(const Source& src, Vec3& a, Vec3& b, double eps) {
     return true;
 }
 
-void vertex_edge_events(const Source& src, std::uint32_t si, const Features& features,
-                        std::uint32_t ei, const SurfaceBvh& bvh, const MeshParams& params,
-                        std::vector<Event>& out) {
-    const FeatureEdge& edge = features.edges[ei];
-    if (src.surface >= 0 && std::find(edge.surfaces.begin(), edge.surfaces.end(),
-                                      std::uint32_t(src.surface)) != edge.surfaces.end())
-        return;
-    Vec3 a = edge.a, b = edge.b;
-    if (!clip_in_front(src, a, b, params.snap))
-        return;
-    const std::vector<std::uint32_t> skip = with_source(edge.surfaces, src);
+// The VE events of the part [a, b] of blocker edge ei with each source vertex.
+void vertex_edge_part_events(const Source& src, std::uint32_t si, const FeatureEdge& edge,
+                             std::uint32_t ei, const Vec3& a, const Vec3& b,
+                             const std::vector<std::uint32_t>& skip, const SurfaceBvh& bvh,
+                             const MeshParams& params, std::vector<Event>& out) {
     const std::size_t n = src.vertices.size();
     for (std::size_t k = 0; k < n; ++k) {
         const Vec3& v = src.vertices[k];
@@ -170,6 +214,22 @@ void vertex_edge_events(const Source& src, std::uint32_t si, const Features& fea
         if (vertex_edge_wedge(ev, v, a, b, 2 * params.diagonal))
             out.push_back(std::move(ev));
     }
+}
+
+void vertex_edge_events(const Source& src, std::uint32_t si, const Features& features,
+                        std::uint32_t ei, const SurfaceBvh& bvh, const MeshParams& params,
+                        std::vector<Event>& out) {
+    const FeatureEdge& edge = features.edges[ei];
+    if (src.surface >= 0 && std::find(edge.surfaces.begin(), edge.surfaces.end(),
+                                      std::uint32_t(src.surface)) != edge.surfaces.end())
+        return;
+    Vec3 a = edge.a, b = edge.b;
+    if (!clip_in_front(src, a, b, params.snap))
+        return;
+    const std::vector<std::uint32_t> skip = with_source(edge.surfaces, src);
+    // A wedge from a part inside a spot's cone stays inside it: its rays leave the spot.
+    for (const auto& [part_a, part_b] : lit_parts(src, a, b))
+        vertex_edge_part_events(src, si, edge, ei, part_a, part_b, skip, bvh, params, out);
 }
 
 void edge_vertex_events(const Source& src, std::uint32_t si, const Features& features,

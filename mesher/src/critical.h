@@ -23,6 +23,10 @@ struct Source {
     std::vector<Vec3> vertices;
     Vec3 normal;     ///< of the emitting side
     double offset = 0; ///< dot(normal, p) on the source plane
+    /// A spot: it lights only the directions x − p with cos θ to this unit axis above
+    /// cos_cutoff (-1, every direction, for other sources).
+    Vec3 axis;
+    double cos_cutoff = -1;
     bool in_front(const Vec3& x, double eps) const {
         return surface < 0 || dot(normal, x) - offset > eps;
     }
@@ -53,7 +57,9 @@ struct Event {
 };
 
 /// \brief The VE and EV events of every source whose blocker feature is a silhouette seen
-///        from the source feature and is not entirely hidden from it.
+///        from the source feature and is not entirely hidden from it. A spot's VE wedges are
+///        cut to the parts of blocker edges inside its cut-off cone, so that it makes no
+///        shadow boundaries where it sends no light.
 std::vector<Event> critical_events(const std::vector<Source>& sources, const Features& features,
                                    const SurfaceBvh& bvh, const MeshParams& params,
                                    const Context& ctx);

@@ -53,7 +53,7 @@ FixedSystem build_fixed_system(const Scene& scene, const RadiosityMesh& mesh,
     shoot_point_lights(lights, geo, scene.point_lights, visibility, settings, ctx);
     s.light_direct = lights.h_direct;
     for (const PointLight& l : scene.point_lights)
-        s.light_emitted += RgbD(l.intensity) * (4.0 * k_pi);
+        s.light_emitted += l.power();
     s.light_escaped = lights.escaped;
     std::vector<Row> rows(n);
     s.escape.assign(n, 0.0);

@@ -24,9 +24,11 @@ struct Link {
 
 struct LightLink {
     std::uint32_t receiver = 0, light = 0;
-    Rgb irradiance;           ///< I Ω V / A of the receiver, W/m²
-    float spread = 0;         ///< variation of I cos θ / d² over the receiver (largest channel)
-    std::uint8_t partial = 0;
+    /// I Ω V / A of the receiver, W/m² (Ω weighted by a spot's profile)
+    Rgb irradiance;
+    /// Variation of I·profile·cos θ / d² over the receiver (largest channel), W/m²
+    float spread = 0;
+    std::uint8_t partial = 0; ///< partly occluded, or across a spot's hard cone edge
 };
 
 /// A link with a cluster at one end or both (Smits et al. 1994): the source is seen as a point

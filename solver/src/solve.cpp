@@ -57,10 +57,10 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
         pb.absorbed += RgbD(h.r * a.r, h.g * a.g, h.b * a.b) * geo.area[e];
     }
     for (std::size_t l = 0; l < scene.point_lights.size(); ++l) {
-        const RgbD power = RgbD(scene.point_lights[l].intensity) * (4.0 * k_pi);
+        const PointLight& light = scene.point_lights[l];
+        const RgbD power = light.power();
         pb.emitted += power;
-        pb.escaped += power * light_escape_fraction(geo, visibility, scene.point_lights[l].position,
-                                                    l, rows.seed);
+        pb.escaped += power * light_escape_fraction(geo, visibility, light, l, rows.seed);
     }
     pb.residual = pb.emitted * unconverged_fraction;
     return pb;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 
@@ -232,6 +233,179 @@ TEST(Units, CornellLightPowerFromMillimetreScene) {
     EXPECT_NEAR(r.stats.power.emitted.r, emitted.r, 1e-6 * emitted.r);
     EXPECT_NEAR(r.stats.power.emitted.b, emitted.b, 1e-6 * emitted.b);
 }
+
+// ---- Spot lights: direct illuminance I·profile·cos θ / d² and power conservation ----
+
+// A spot's profile and ∫ profile dω written out here, independently of core/src/scene.cpp:
+// 1 within the beam, 0 beyond the cut-off, smoothstep in cos θ between (pbrt-v4's SpotLight).
+double spot_profile(double cos_theta, double beam_deg, double cutoff_deg) {
+    const double cb = std::cos(beam_deg * k_pi / 180), cc = std::cos(cutoff_deg * k_pi / 180);
+    if (cos_theta >= cb)
+        return 1;
+    if (cos_theta <= cc)
+        return 0;
+    const double t = (cos_theta - cc) / (cb - cc);
+    return t * t * (3 - 2 * t);
+}
+
+double spot_solid_angle_sr(double beam_deg, double cutoff_deg) {
+    const double cb = std::cos(beam_deg * k_pi / 180), cc = std::cos(cutoff_deg * k_pi / 180);
+    return 2 * k_pi * ((1 - cb) + (cb - cc) / 2);
+}
+
+PointLight make_spot(const Vec3& position, const Vec3& direction, double beam_deg,
+                     double cutoff_deg, double intensity_cd) {
+    PointLight light;
+    light.name = "spot";
+    light.position = position;
+    light.intensity = from_photometric(intensity_cd, Rgb(1.0f));
+    light.spot = SpotCone{normalize(direction), beam_deg, cutoff_deg};
+    return light;
+}
+
+// A spot 2 m above a large black floor, tilted 17° from straight down; sensors along three
+// lines across the beam, the falloff and beyond the cut-off. Sensors are gathered at the
+// points themselves (exact up to float); the floor elements must catch exactly the spot's
+// power (its cone lies within the floor), which checks the profile-weighted solid angles of
+// the light links (hierarchical) and shots (shooting).
+class SpotOverBlackFloor : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SpotOverBlackFloor, DirectIlluminanceIsIProfileCosOverDSquared) {
+    const double cd = 1000, beam = 20, cutoff = 35;
+    const Vec3 position{0.2, -0.1, 2.0}, axis = normalize(Vec3(0.3, 0.1, -1));
+    Scene scene;
+    auto black = add_material(scene, "black", Rgb(0), {}, false);
+    add_rect(scene, "floor", black, {-5, -5, 0}, {10, 0, 0}, {0, 10, 0});
+    scene.point_lights.push_back(make_spot(position, axis, beam, cutoff, cd));
+    for (double y : {-0.4, 0.0, 0.6})
+        for (double x = -3.0; x <= 3.01; x += 0.2)
+            scene.sensors.push_back({"floor", {x, y, 0}, {0, 0, 1}});
+    scene.mesher.max_edge_length = 0.5;
+    app::BakeResult r = bake_no_render(scene, 0, GetParam());
+    ASSERT_EQ(r.sensors.size(), scene.sensors.size());
+    int beam_count = 0, falloff_count = 0, outside_count = 0;
+    double worst_beam = 0, worst_falloff = 0, worst_outside_lx = 0;
+    for (std::size_t i = 0; i < r.sensors.size(); ++i) {
+        const Vec3 d = scene.sensors[i].position - position;
+        const double dist = length(d);
+        const double cos_axis = dot(d, axis) / dist, cos_incidence = -d.z / dist;
+        const double profile = spot_profile(cos_axis, beam, cutoff);
+        const double expected = cd * profile * cos_incidence / (dist * dist);
+        const double lx = r.sensors[i].illuminance_direct_lx;
+        if (profile == 0) {
+            ++outside_count;
+            worst_outside_lx = std::max(worst_outside_lx, std::abs(lx));
+            EXPECT_EQ(lx, 0.0) << "sensor " << i << " beyond the cut-off";
+            continue;
+        }
+        const double error = std::abs(lx - expected) / expected;
+        (profile == 1 ? worst_beam : worst_falloff) =
+            std::max(profile == 1 ? worst_beam : worst_falloff, error);
+        ++(profile == 1 ? beam_count : falloff_count);
+        EXPECT_NEAR(lx, expected, 1e-3 * expected) << "sensor " << i << ", profile " << profile;
+        EXPECT_NEAR(r.sensors[i].illuminance_total_lx, lx, 1e-9) << "black floor";
+    }
+    EXPECT_GE(beam_count, 5);
+    EXPECT_GE(falloff_count, 5);
+    EXPECT_GE(outside_count, 5);
+    // The floor catches the whole cone: Σ H A = I ∫ profile dω.
+    const double flux_lm = cd * spot_solid_angle_sr(beam, cutoff);
+    double caught_lm = 0;
+    for (std::size_t e = 0; e < r.mesh.element_count(); ++e)
+        caught_lm += to_photometric(r.solution.irradiance_direct[e]) * r.mesh.element_area[e];
+    const double caught_error = std::abs(caught_lm - flux_lm) / flux_lm;
+    std::printf("spot over black floor (%s): sensors %d/%d/%d, worst rel. error beam %.2e, "
+                "falloff %.2e, outside %.2e lx; floor flux rel. error %.2e\n",
+                GetParam(), beam_count, falloff_count, outside_count, worst_beam, worst_falloff,
+                worst_outside_lx, caught_error);
+    EXPECT_LT(caught_error, 1e-3);
+    EXPECT_NEAR(to_photometric(r.stats.power.emitted), flux_lm, 1e-6 * flux_lm);
+    EXPECT_NEAR(to_photometric(r.stats.power.escaped), 0.0, 1e-9 * flux_lm);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, SpotOverBlackFloor,
+                         ::testing::Values("hierarchical", "shooting"));
+
+// The hierarchical oracle refines light links where the profile varies over the receiver: a
+// hard-edged spot (beam = cut-off) on coarse roots leaves every element the cone's edge
+// crosses at solver.min_area, like a shadow boundary, while elements away from it stay larger.
+TEST(SpotHierarchical, HardConeEdgeIsRefinedToMinArea) {
+    const double cutoff = 25, min_area = 0.004;
+    const Vec3 position{0.3, 0.2, 2.0}, axis = normalize(Vec3(-0.2, 0.1, -1));
+    Scene scene;
+    auto black = add_material(scene, "black", Rgb(0), {}, false);
+    add_rect(scene, "floor", black, {-3, -3, 0}, {6, 0, 0}, {0, 6, 0});
+    scene.point_lights.push_back(make_spot(position, axis, cutoff, cutoff, 1000));
+    scene.mesher.max_edge_length = 1.0;
+    scene.solver.min_area = min_area;
+    scene.solver.epsilon = 0.05; // I cos θ / d² alone would not refine the beam to min_area
+    app::BakeResult r = bake_no_render(scene, 0, "hierarchical");
+    const double cc = std::cos(cutoff * k_pi / 180);
+    int crossed = 0;
+    double widest_crossed = 0, widest_lit = 0;
+    for (std::size_t e = 0; e < r.mesh.element_count(); ++e) {
+        int inside = 0;
+        for (std::uint32_t v : r.mesh.triangles[e])
+            inside += dot(normalize(r.mesh.vertex(v) - position), axis) > cc ? 1 : 0;
+        const double area = r.mesh.element_area[e];
+        if (inside == 3)
+            widest_lit = std::max(widest_lit, area);
+        if (inside == 0 || inside == 3)
+            continue;
+        ++crossed;
+        widest_crossed = std::max(widest_crossed, area);
+    }
+    std::printf("hard-edged spot: %zu elements, %d across the cone's edge, largest of those "
+                "%.4f m2 (min_area %.4f), largest inside %.4f m2\n",
+                r.mesh.element_count(), crossed, widest_crossed, min_area, widest_lit);
+    EXPECT_GT(crossed, 20);
+    EXPECT_LE(widest_crossed, min_area * (1 + 1e-9));
+    EXPECT_GT(widest_lit, 4 * min_area);
+    const double flux_lm = 1000 * spot_solid_angle_sr(cutoff, cutoff);
+    double caught_lm = 0;
+    for (std::size_t e = 0; e < r.mesh.element_count(); ++e)
+        caught_lm += to_photometric(r.solution.irradiance_direct[e]) * r.mesh.element_area[e];
+    EXPECT_NEAR(caught_lm, flux_lm, 1e-3 * flux_lm);
+}
+
+// A closed grey room (ρ = 0.5) lit by a smooth spot aimed into a corner and a hard-edged one
+// (beam = cut-off) aimed at a wall: everything emitted is absorbed, absorbed + unshot = the
+// spots' analytic power within the closed-room tolerances of Cie171Cube (shooting, 1e-3) and
+// Cie171CubeHierarchical (5e-3), and nothing escapes.
+struct SpotRoomCase {
+    const char* method;
+    double tolerance;
+};
+
+class SpotInClosedRoom : public ::testing::TestWithParam<SpotRoomCase> {};
+
+TEST_P(SpotInClosedRoom, AbsorbedEqualsSpotPower) {
+    const SpotRoomCase& c = GetParam();
+    Scene scene;
+    auto grey = add_material(scene, "grey", Rgb(0.5f), {}, false);
+    test::add_room(scene, {0, 0, 0}, {4, 3, 2.5}, grey);
+    scene.point_lights.push_back(make_spot({1.2, 1.0, 2.3}, {1, 0.4, -0.7}, 25, 50, 800));
+    scene.point_lights.push_back(make_spot({3.0, 2.2, 1.5}, {-0.2, -1, 0.3}, 30, 30, 500));
+    scene.mesher.max_edge_length = 0.5;
+    scene.solver.residual = 1e-4;
+    scene.solver.epsilon = 1e-2; // hierarchical: as Cie171CubeHierarchical, a few seconds
+    scene.solver.min_area = 0.02;
+    app::BakeResult r = bake_no_render(scene, 0, c.method);
+    const double power_lm = 800 * spot_solid_angle_sr(25, 50) + 500 * spot_solid_angle_sr(30, 30);
+    const solver::PowerBalance& pb = r.stats.power;
+    const double absorbed = to_photometric(pb.absorbed), residual = to_photometric(pb.residual);
+    const double error = std::abs(absorbed + residual - power_lm) / power_lm;
+    std::printf("spots in a closed room (%s): power %.3f lm, absorbed %.3f lm, unshot %.3f lm, "
+                "rel. error %.2e\n",
+                c.method, power_lm, absorbed, residual, error);
+    EXPECT_NEAR(to_photometric(pb.emitted), power_lm, 1e-6 * power_lm);
+    EXPECT_LT(error, c.tolerance);
+    EXPECT_NEAR(to_photometric(pb.escaped), 0.0, 1e-9 * power_lm);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, SpotInClosedRoom,
+                         ::testing::Values(SpotRoomCase{"shooting", 1e-3},
+                                           SpotRoomCase{"hierarchical", 5e-3}));
 
 } // namespace
 } // namespace penumbra

@@ -1,12 +1,15 @@
 #include "core/scene_io.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <functional>
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -170,6 +173,102 @@ TEST(SceneIo, PointLightPhotometry) {
     EXPECT_EQ(red.name, "point_lights[1]");
     EXPECT_NEAR(to_photometric(red.intensity), 500.0, 1e-3);
     EXPECT_NEAR(red.intensity.g / red.intensity.r, 0.5, 1e-6);
+}
+
+TEST(SceneIo, SpotLights) {
+    const std::string dir = test::temp_dir("scene-spot");
+    write_file(dir, "scene.json", lamp_scene(R"json(,
+  "units": "mm",
+  "point_lights": [
+    {"name": "down", "position": [0, 0, 2000], "intensity_cd": 900,
+     "spot": {"direction": [0, 0, -2], "beam_deg": 20, "cutoff_deg": 30}},
+    {"name": "cone", "position": [0, 0, 2000], "flux_lm": 1000,
+     "spot": {"direction": [1, 1, 0], "beam_deg": 10, "cutoff_deg": 50}}
+  ])json"));
+    const Scene scene = load_scene(dir + "/scene.json");
+    ASSERT_EQ(scene.point_lights.size(), 2u);
+    const PointLight& down = scene.point_lights[0];
+    ASSERT_TRUE(down.spot.has_value());
+    EXPECT_NEAR(to_photometric(down.intensity), 900.0, 1e-3); // on the axis
+    EXPECT_NEAR(down.spot->direction.z, -1.0, 1e-15);         // normalised, not scaled by mm
+    EXPECT_EQ(down.spot->beam_deg, 20.0);
+    EXPECT_EQ(down.spot->cutoff_deg, 30.0);
+    // flux_lm is the flux in the cone: I = Φ / (2π [(1 − cos b) + (cos b − cos c) / 2]).
+    const PointLight& cone = scene.point_lights[1];
+    const double cb = std::cos(10 * k_pi / 180), cc = std::cos(50 * k_pi / 180);
+    EXPECT_NEAR(to_photometric(cone.intensity), 1000.0 / (2 * k_pi * ((1 - cb) + (cb - cc) / 2)),
+                1e-3);
+    EXPECT_NEAR(to_photometric(cone.power()), 1000.0, 1e-2);
+}
+
+TEST(SceneIo, BadSpotsNameTheKey) {
+    const std::string dir = test::temp_dir("scene-bad-spot");
+    struct Case {
+        const char* spot;
+        std::initializer_list<std::string> parts;
+    };
+    const Case cases[] = {
+        {R"({"direction": [0, 0, 0], "beam_deg": 10, "cutoff_deg": 20})",
+         {"'point_lights[0].spot.direction'", "non-zero"}},
+        {R"({"direction": ["nan", 0, -1], "beam_deg": 10, "cutoff_deg": 20})",
+         {"'point_lights[0].spot.direction'", "expected 3 numbers"}},
+        {R"({"direction": [0, 0, -1], "beam_deg": 30, "cutoff_deg": 20})",
+         {"'point_lights[0].spot.beam_deg'", "[0, cutoff_deg = 20]", "got 30"}},
+        {R"({"direction": [0, 0, -1], "beam_deg": -1, "cutoff_deg": 20})",
+         {"'point_lights[0].spot.beam_deg'", "got -1"}},
+        {R"({"direction": [0, 0, -1], "beam_deg": 10, "cutoff_deg": 181})",
+         {"'point_lights[0].spot.cutoff_deg'", "(0, 180]", "got 181"}},
+        {R"({"direction": [0, 0, -1], "beam_deg": 0, "cutoff_deg": 0})",
+         {"'point_lights[0].spot.cutoff_deg'", "(0, 180]"}},
+        {R"({"direction": [0, 0, -1], "beam_deg": 10, "cutoff_deg": 20, "falloff": 2})",
+         {"'point_lights[0].spot.falloff'", "unknown key 'falloff'", "cutoff_deg"}},
+        {R"({"beam_deg": 10, "cutoff_deg": 20})",
+         {"'point_lights[0].spot.direction'", "missing required key"}},
+    };
+    int i = 0;
+    for (const Case& c : cases) {
+        const std::string name = "spot" + std::to_string(i++) + ".json";
+        write_file(dir, name,
+                   lamp_scene(std::string(R"json(, "point_lights": [{"position": [0, 0, 2],
+                   "intensity_cd": 100, "spot": )json") + c.spot + "}]"));
+        std::vector<std::string> parts(c.parts);
+        parts.push_back(name);
+        try {
+            load_scene(dir + "/" + name);
+            ADD_FAILURE() << "no InputError for " << c.spot;
+        } catch (const InputError& e) {
+            const std::string message = e.what();
+            EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+            for (const std::string& part : parts)
+                EXPECT_NE(message.find(part), std::string::npos)
+                    << "'" << part << "' missing from: " << message;
+        }
+    }
+}
+
+TEST(SceneIo, ValidateChecksSpotsBuiltInCode) {
+    Scene scene;
+    scene.file = "code";
+    PointLight light;
+    light.position = {0, 0, 2};
+    light.intensity = Rgb(1.0f);
+    light.spot = SpotCone{{0, 0, -3}, 10, 20};
+    scene.point_lights.push_back(light);
+    scene.polygons.push_back({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, 0, "floor", "code:0"});
+    scene.materials.push_back(Material{});
+    Scene ok = scene;
+    validate_scene(ok);
+    EXPECT_NEAR(ok.point_lights[0].spot->direction.z, -1.0, 1e-15); // normalised in place
+    Scene nan = scene;
+    nan.point_lights[0].spot->direction.x = std::nan("");
+    expect_input_error([&] { validate_scene(nan); },
+                       {"'point_lights[0].spot.direction'", "finite, non-zero"});
+    Scene wide = scene;
+    wide.point_lights[0].spot->cutoff_deg = 190;
+    expect_input_error([&] { validate_scene(wide); }, {"'point_lights[0].spot.cutoff_deg'"});
+    Scene inverted = scene;
+    inverted.point_lights[0].spot->beam_deg = 25;
+    expect_input_error([&] { validate_scene(inverted); }, {"'point_lights[0].spot.beam_deg'"});
 }
 
 TEST(SceneIo, SensorsInlineAndFromPtsFile) {
@@ -380,6 +479,115 @@ TEST(SceneIo, SceneWithoutEmitterIsAnError) {
     expect_input_error([&] { load_scene(dir + "/dark.json"); },
                        {"dark.json", "scene has no emitter", "point_lights"});
 }
+
+// ---- PointLight::profile and PointLight::power (core/scene.h): the closed-form power of a
+// spot against its profile integrated numerically over the sphere ----
+
+PointLight spot(const Vec3& direction, double beam_deg, double cutoff_deg) {
+    PointLight light;
+    light.intensity = Rgb(2.0f, 1.0f, 0.5f);
+    light.spot = SpotCone{normalize(direction), beam_deg, cutoff_deg};
+    return light;
+}
+
+// ∫ profile dω over the sphere, sr, in a frame around the spot's axis: 8-point Gauss–Legendre
+// panels in u = cos θ (split at the beam and cut-off, where the profile has kinks) times 16
+// azimuths. The profile is called with full 3D directions, so a wrong axis or an asymmetric
+// profile shows.
+double integrate_profile(const PointLight& light) {
+    constexpr std::array<double, 8> x = {-0.9602898564975363, -0.7966664774136267,
+                                         -0.5255324099163290, -0.1834346424956498,
+                                         0.1834346424956498,  0.5255324099163290,
+                                         0.7966664774136267,  0.9602898564975363};
+    constexpr std::array<double, 8> w = {0.1012285362903763, 0.2223810344533745,
+                                         0.3137066458778873, 0.3626837833783620,
+                                         0.3626837833783620, 0.3137066458778873,
+                                         0.2223810344533745, 0.1012285362903763};
+    const Vec3 axis = light.spot ? light.spot->direction : Vec3(0, 0, 1);
+    std::vector<double> breaks = {-1.0, 1.0};
+    if (light.spot) {
+        breaks.push_back(std::cos(light.spot->cutoff_deg * k_pi / 180.0));
+        breaks.push_back(std::cos(light.spot->beam_deg * k_pi / 180.0));
+    }
+    std::sort(breaks.begin(), breaks.end());
+    const Frame frame = Frame::from_normal(axis);
+    const int panels = 200, azimuths = 16;
+    double sum = 0;
+    for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
+        const double h = (breaks[b + 1] - breaks[b]) / panels;
+        for (int p = 0; p < panels; ++p) {
+            const double mid = breaks[b] + (p + 0.5) * h;
+            for (std::size_t k = 0; k < x.size(); ++k) {
+                const double u = std::clamp(mid + 0.5 * h * x[k], -1.0, 1.0);
+                const double r = std::sqrt(std::max(0.0, 1.0 - u * u));
+                double ring = 0;
+                for (int a = 0; a < azimuths; ++a) {
+                    const double phi = 2.0 * k_pi * (a + 0.25) / azimuths;
+                    ring += light.profile(
+                        frame.to_world(Vec3(r * std::cos(phi), r * std::sin(phi), u)));
+                }
+                sum += 0.5 * h * w[k] * ring * (2.0 * k_pi / azimuths);
+            }
+        }
+    }
+    return sum;
+}
+
+TEST(SpotLight, IsotropicProfileIsOneAndPowerIsFourPiI) {
+    PointLight light;
+    light.intensity = Rgb(1.0f, 2.0f, 3.0f);
+    EXPECT_EQ(light.profile(normalize(Vec3(0.3, -0.2, 0.9))), 1.0);
+    EXPECT_DOUBLE_EQ(light.power().g, 2.0 * 4.0 * k_pi);
+    EXPECT_NEAR(integrate_profile(light), 4.0 * k_pi, 1e-9);
+}
+
+TEST(SpotLight, ProfileIsOneInTheBeamZeroBeyondTheCutoffAndSmoothBetween) {
+    const PointLight light = spot({0.3, -0.5, 0.8}, 20, 35);
+    const Vec3 axis = light.spot->direction;
+    const Frame f = Frame::from_normal(axis);
+    auto at_deg = [&](double theta_deg) {
+        const double t = theta_deg * k_pi / 180.0;
+        return light.profile(f.to_world(Vec3(std::sin(t), 0, std::cos(t))));
+    };
+    EXPECT_EQ(at_deg(0), 1.0);
+    EXPECT_EQ(at_deg(19.9), 1.0);
+    EXPECT_EQ(at_deg(35.1), 0.0);
+    EXPECT_EQ(at_deg(120), 0.0);
+    // Smoothstep in cos θ, written out here independently of scene.cpp.
+    const double cb = std::cos(20 * k_pi / 180), cc = std::cos(35 * k_pi / 180);
+    for (double theta : {21.0, 27.5, 34.0}) {
+        const double s = (std::cos(theta * k_pi / 180) - cc) / (cb - cc);
+        EXPECT_NEAR(at_deg(theta), s * s * (3 - 2 * s), 1e-12) << theta;
+    }
+    // Decreasing from the beam to the cut-off.
+    double previous = 1;
+    for (double theta = 20; theta <= 35; theta += 0.5) {
+        EXPECT_LE(at_deg(theta), previous) << theta;
+        previous = at_deg(theta);
+    }
+}
+
+class SpotPower : public ::testing::TestWithParam<std::array<double, 2>> {};
+
+TEST_P(SpotPower, NumericallyIntegratedProfileEqualsPower) {
+    const auto [beam, cutoff] = GetParam();
+    const PointLight light = spot({-0.4, 0.1, -0.9}, beam, cutoff);
+    const double numeric = integrate_profile(light);
+    const RgbD power = light.power();
+    const double relative = std::abs(numeric * light.intensity.r - power.r) / power.r;
+    std::printf("spot beam %g cutoff %g: integral %.12f sr, power()/I %.12f sr, rel. %.2e\n",
+                beam, cutoff, numeric, power.r / light.intensity.r, relative);
+    EXPECT_LT(relative, 1e-6);
+    EXPECT_NEAR(power.b / power.r, 0.25, 1e-7); // the colour is the intensity's
+}
+
+INSTANTIATE_TEST_SUITE_P(Cones, SpotPower,
+                         ::testing::Values(std::array<double, 2>{20, 35},
+                                           std::array<double, 2>{0, 90},
+                                           std::array<double, 2>{45, 45},
+                                           std::array<double, 2>{60, 150},
+                                           std::array<double, 2>{0, 180},
+                                           std::array<double, 2>{1, 2}));
 
 } // namespace
 } // namespace penumbra

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 
@@ -240,6 +242,47 @@ TEST(Discontinuity, PointLightCastsD0Boundaries) {
         EXPECT_TRUE(test::segment_on_element_edges(mesh, floor, {a[0], a[1], 0}, {c[0], c[1], 0},
                                                    1e-6 * mesh.scene_diagonal));
     }
+}
+
+// A spot sends no light beyond its cut-off, so it casts no boundaries there: the same light
+// made isotropic casts boundaries outside the cone (so the check can fail), the spot only
+// inside it, and a spot aimed past everything casts none.
+TEST(Discontinuity, SpotCastsBoundariesOnlyInsideItsCone) {
+    BoxScene b = box_scene();
+    b.scene.polygons.pop_back(); // no area light
+    PointLight light;
+    light.position = {2.2, 2.05, 2.5};
+    light.intensity = Rgb(10.0f);
+    const Vec3 axis = normalize(Vec3(1.6, 1.7, 0.4) - light.position);
+    const double cutoff_deg = 12;
+    // Largest angle from the axis over the segments' end and middle points, degrees.
+    auto widest_deg = [&](const RadiosityMesh& mesh) {
+        double widest = 0;
+        for (const DiscontinuitySegment& d : mesh.discontinuities)
+            for (const Vec3& x : {d.a, d.b, (d.a + d.b) * 0.5}) {
+                const double c = dot(normalize(x - light.position), axis);
+                widest = std::max(widest, std::acos(std::clamp(c, -1.0, 1.0)) * 180 / k_pi);
+            }
+        return widest;
+    };
+    Scene isotropic = b.scene;
+    isotropic.point_lights.push_back(light);
+    const RadiosityMesh all = mesher::build_mesh(isotropic, test::quiet_context());
+    EXPECT_GT(widest_deg(all), cutoff_deg + 5);
+
+    light.spot = SpotCone{axis, 8, cutoff_deg};
+    b.scene.point_lights.push_back(light);
+    const RadiosityMesh cone = mesher::build_mesh(b.scene, test::quiet_context());
+    ASSERT_FALSE(cone.discontinuities.empty());
+    EXPECT_LT(cone.discontinuities.size(), all.discontinuities.size());
+    EXPECT_LE(widest_deg(cone), cutoff_deg + 0.01);
+    std::printf("isotropic: %zu segments to %.2f deg from the axis; spot (cut-off %g deg): %zu "
+                "segments to %.4f deg\n",
+                all.discontinuities.size(), widest_deg(all), cutoff_deg,
+                cone.discontinuities.size(), widest_deg(cone));
+
+    b.scene.point_lights.back().spot = SpotCone{{1, 0, 0}, 10, 20}; // reaches no surface
+    EXPECT_TRUE(mesher::build_mesh(b.scene, test::quiet_context()).discontinuities.empty());
 }
 
 TEST(Discontinuity, MeshQualityStaysWithinBounds) {

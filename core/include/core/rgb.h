@@ -45,6 +45,7 @@ struct RgbD {
     constexpr RgbD operator*(double s) const { return {r * s, g * s, b * s}; }
     constexpr RgbD& operator+=(const RgbD& o) { r += o.r; g += o.g; b += o.b; return *this; }
     constexpr double sum() const { return r + g + b; }
+    constexpr double max_component() const { return std::max(r, std::max(g, b)); }
 };
 
 // ---- Photometry -----------------------------------------------------------------------------

@@ -48,6 +48,7 @@ struct BakeFlags {
     double epsilon = 0;
     double min_area_m2 = 0;
     std::string clustering;
+    std::string iteration;
     std::string reuse;
     bool no_state = false;
     std::int64_t series_every_shots = 0;
@@ -87,6 +88,8 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
         scene.solver.min_area = flags.min_area_m2;
     if (!flags.clustering.empty())
         scene.solver.clustering = flags.clustering;
+    if (!flags.iteration.empty())
+        scene.solver.iteration = flags.iteration;
     check_output_dir(flags.output);
     std::shared_ptr<const solver::HierarchicalState> previous;
     if (!flags.reuse.empty()) {
@@ -168,6 +171,11 @@ int main(int argc, char** argv) {
                          "elements (off), or cluster above 3 000 elements (auto; overrides "
                          "solver.clustering)")
         ->check(CLI::IsMember({"auto", "on", "off"}));
+    bake_cmd->add_option("--iteration", bake.iteration,
+                         "hierarchical: how each solve between refinements iterates: jacobi, "
+                         "gauss_seidel (blocks of 32 roots) or shooting (progressive, on the "
+                         "hierarchy; overrides solver.iteration)")
+        ->check(CLI::IsMember({"jacobi", "gauss_seidel", "shooting"}));
     bake_cmd->add_option("--reuse", bake.reuse,
                          "hierarchical: re-solve from an earlier bake's folder (or its "
                          "solver_state.bin): same geometry, new reflectances or emissions; keeps "

@@ -256,11 +256,35 @@ PolygonSpec parse_polygon(const Field& field, double metres_per_unit) {
     return spec;
 }
 
+// "spot": {"direction": [x, y, z], "beam_deg": a, "cutoff_deg": b}, half-angles with
+// 0 ≤ a ≤ b ≤ 180 and b > 0; the direction is not scaled by the units and is normalised.
+SpotCone parse_spot(const Field& field) {
+    field.expect_keys({"direction", "beam_deg", "cutoff_deg"});
+    SpotCone spot;
+    const Field direction = field.required("direction");
+    spot.direction = direction.vec3();
+    if (length(spot.direction) == 0)
+        direction.fail("expected a non-zero vector");
+    spot.direction = normalize(spot.direction);
+    const Field cutoff = field.required("cutoff_deg");
+    spot.cutoff_deg = cutoff.number();
+    if (!(spot.cutoff_deg > 0 && spot.cutoff_deg <= 180))
+        cutoff.fail(fmt::format("must be in (0, 180] (a half-angle), got {}", spot.cutoff_deg));
+    const Field beam = field.required("beam_deg");
+    spot.beam_deg = beam.number();
+    if (!(spot.beam_deg >= 0 && spot.beam_deg <= spot.cutoff_deg))
+        beam.fail(fmt::format("must be in [0, cutoff_deg = {}] (a half-angle), got {}",
+                              spot.cutoff_deg, spot.beam_deg));
+    return spot;
+}
+
 PointLight parse_point_light(const Field& field, double metres_per_unit) {
-    field.expect_keys({"name", "position", "intensity_cd", "flux_lm", "color"});
+    field.expect_keys({"name", "position", "intensity_cd", "flux_lm", "color", "spot"});
     PointLight light;
     light.name = field.has("name") ? field.child("name").string() : field.path();
     light.position = field.required("position").vec3() * metres_per_unit;
+    if (field.has("spot"))
+        light.spot = parse_spot(field.child("spot"));
     const bool by_intensity = field.has("intensity_cd");
     if (by_intensity == field.has("flux_lm"))
         field.fail("give exactly one of 'intensity_cd' and 'flux_lm'");
@@ -268,7 +292,8 @@ PointLight parse_point_light(const Field& field, double metres_per_unit) {
     const double value = amount.number();
     if (value < 0)
         amount.fail(fmt::format("must be >= 0, got {}", value));
-    const double intensity_cd = by_intensity ? value : value / (4.0 * k_pi); // isotropic
+    // flux_lm is what leaves the light: 4π I for an isotropic light, the cone's for a spot.
+    const double intensity_cd = by_intensity ? value : value / light.profile_solid_angle();
     Rgb color(1.0f);
     if (field.has("color")) {
         const Field color_field = field.child("color");
@@ -386,8 +411,9 @@ double number_in(const Field& field, double lo, double hi, const char* range) {
 }
 
 SolverSettings parse_solver(const Field& field, double metres_per_unit) {
-    field.expect_keys({"method", "oracle", "clustering", "residual", "epsilon", "min_area",
-                       "max_sweeps", "ambient", "max_shots", "visibility_rays", "row_cache_mb"});
+    field.expect_keys({"method", "oracle", "clustering", "iteration", "residual", "epsilon",
+                       "min_area", "max_sweeps", "ambient", "max_shots", "visibility_rays",
+                       "row_cache_mb"});
     SolverSettings solver;
     if (field.has("method")) {
         const Field method = field.child("method");
@@ -412,6 +438,15 @@ SolverSettings parse_solver(const Field& field, double metres_per_unit) {
             solver.clustering != "off")
             clustering.fail(fmt::format("unknown clustering '{}' (known: auto, on, off)",
                                         solver.clustering));
+    }
+    if (field.has("iteration")) {
+        const Field iteration = field.child("iteration");
+        solver.iteration = iteration.string();
+        if (solver.iteration != "jacobi" && solver.iteration != "gauss_seidel" &&
+            solver.iteration != "shooting")
+            iteration.fail(fmt::format(
+                "unknown iteration '{}' (known: jacobi, gauss_seidel, shooting)",
+                solver.iteration));
     }
     if (field.has("residual"))
         solver.residual = number_in(field.child("residual"), 1e-12, 0.5, "[1e-12, 0.5]");

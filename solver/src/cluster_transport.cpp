@@ -13,7 +13,7 @@ struct SourceTerm {
 };
 
 SourceTerm source_term(const Hierarchy& h, const ClusterValues& cv, const std::vector<Rgb>& b,
-                       const ClusterLink& link) {
+                       const ClusterLink& link, bool increment) {
     const Vec3 toward_receiver = -Vec3(link.d);
     const float scale = link.g * link.v;
     if (is_cluster(link.source)) {
@@ -24,7 +24,7 @@ SourceTerm source_term(const Hierarchy& h, const ClusterValues& cv, const std::v
     const std::uint32_t p = link.source;
     const float f =
         scale * float(h.area[p] * std::max(0.0, dot(h.normal[p], toward_receiver)));
-    return {h.emission[p] * f, b[p] * f};
+    return {increment ? Rgb{} : h.emission[p] * f, b[p] * f};
 }
 
 } // namespace
@@ -42,7 +42,7 @@ void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std:
 void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const LinkSet& links,
                           const std::vector<Rgb>& b, ClusterValues& cv,
                           std::vector<Rgb>& gathered_direct,
-                          std::vector<Rgb>& gathered_indirect) {
+                          std::vector<Rgb>& gathered_indirect, bool increment) {
     const auto& all = links.cluster_links();
     const auto& by_element = links.cluster_offsets_elements();
     const auto& by_cluster = links.cluster_offsets_clusters();
@@ -52,7 +52,7 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
-            const SourceTerm s = source_term(h, cv, b, l);
+            const SourceTerm s = source_term(h, cv, b, l, increment);
             const float cosine = float(std::max(0.0, dot(h.normal[q], Vec3(l.d))));
             direct += s.emitted * cosine;
             indirect += (s.total - s.emitted) * cosine;
@@ -66,7 +66,7 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
-            const SourceTerm s = source_term(h, cv, b, l);
+            const SourceTerm s = source_term(h, cv, b, l, increment);
             lobe_deposit(direct, Vec3(l.d), s.emitted);
             lobe_deposit(indirect, Vec3(l.d), s.total - s.emitted);
         }

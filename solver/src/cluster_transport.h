@@ -26,9 +26,13 @@ void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std:
 
 /// \brief Gathers every cluster link: adds to the element receivers' \p gathered_direct /
 ///        \p gathered_indirect and sets the clusters' gathered lobes. Parallel by receiver.
+///        With \p increment, \p b (and cv.exitance) is radiosity to be sent on top of what
+///        was (shooting's unshot): all of it counts as indirect, and cv.exitance_emitted is
+///        not read for element sources (the caller zeroes it for clusters).
 void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const LinkSet& links,
                           const std::vector<Rgb>& b, ClusterValues& cv,
-                          std::vector<Rgb>& gathered_direct, std::vector<Rgb>& gathered_indirect);
+                          std::vector<Rgb>& gathered_direct, std::vector<Rgb>& gathered_indirect,
+                          bool increment = false);
 
 /// Pushes the clusters' gathered lobes down to the roots (cv.root_direct / root_indirect).
 void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& cv);

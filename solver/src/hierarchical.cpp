@@ -25,6 +25,7 @@
 #include "hierarchy.h"
 #include "hr_links.h"
 #include "hr_state.h"
+#include "hr_transport.h"
 #include "hr_weights.h"
 #include "leaf_mesh.h"
 #include "vertex_values.h"
@@ -37,24 +38,12 @@ constexpr int k_max_cycles = 12;
 /// solver.clustering "auto" clusters meshes with more elements than this.
 constexpr std::size_t k_clustering_auto_roots = 3000;
 
-struct NodeValues {
-    std::vector<Rgb> b, gathered_direct, gathered_indirect, h_direct, h_indirect;
-    std::vector<float> b_lo, b_hi; ///< range of the leaves' radiosity (largest channel)
-    std::vector<float> b_range;    ///< b_hi − b_lo
-    /// Irradiance gathered through element links alone: what the leaf weights spread.
-    std::vector<Rgb> link_direct, link_indirect;
-    /// What each node sends through its element links: its leaves' radiosities by their emit
-    /// weights (the leaf's own radiosity for a leaf).
-    std::vector<Rgb> b_emit;
-    LeafWeights weights;
-};
-
 double emitted_power_max(const Hierarchy& h, const std::vector<PointLight>& lights) {
     double total = 0;
     for (std::size_t n = 0; n < h.root_count; ++n)
         total += double(h.emission[n].max_component()) * h.area[n];
     for (const PointLight& l : lights)
-        total += 4.0 * k_pi * double(l.intensity.max_component());
+        total += l.power().max_component();
     return total;
 }
 
@@ -67,175 +56,6 @@ double radiosity_scale(const Hierarchy& h, const LinkSet& links) {
     for (const LightLink& l : links.light_links())
         scale = std::max(scale, double(l.irradiance.max_component()));
     return scale;
-}
-
-void gather(const Hierarchy& h, const LinkSet& links, NodeValues& v) {
-    const std::size_t n = h.size();
-    v.gathered_direct.assign(n, Rgb{});
-    v.gathered_indirect.assign(n, Rgb{});
-    const auto& offsets = links.receiver_offsets();
-    const auto& all = links.links();
-    const std::vector<Rgb>& b_source = v.b_emit.size() == n ? v.b_emit : v.b;
-    parallel_for_index(n, 256, [&](std::size_t q) {
-        RgbD direct, indirect;
-        for (std::uint32_t k = offsets[q]; k < offsets[q + 1]; ++k) {
-            const Link& l = all[k];
-            direct += RgbD(h.emission[l.source]) * l.ff;
-            indirect += RgbD(b_source[l.source] - h.emission[l.source]) * l.ff;
-        }
-        v.gathered_direct[q] = Rgb(float(direct.r), float(direct.g), float(direct.b));
-        v.gathered_indirect[q] = Rgb(float(indirect.r), float(indirect.g), float(indirect.b));
-    });
-    v.link_direct = v.gathered_direct;
-    v.link_indirect = v.gathered_indirect;
-    for (const LightLink& l : links.light_links()) // few; serial keeps the order fixed
-        v.gathered_direct[l.receiver] += l.irradiance;
-}
-
-// Leaf x's radiosity \p b as it is sent: by x itself and, by its emit weights, as its share
-// of what each ancestor sends (whose b_emit the caller has zeroed).
-void add_emit_shares(const Hierarchy& h, NodeValues& v, std::uint32_t x, const Rgb& b) {
-    v.b_emit[x] = b;
-    for (std::int32_t a = h.parent[x]; a >= 0; a = h.parent[a])
-        v.b_emit[a] +=
-            b * float(h.area[x] / h.area[a] * v.weights.emit[v.weights.at(x, h.level[a])]);
-}
-
-// NodeValues::b_emit afresh from the leaves' radiosities, once the weights have changed.
-void pull_emit(const Hierarchy& h, NodeValues& v) {
-    v.b_emit.assign(h.size(), Rgb{});
-    parallel_for_index(h.root_count, 16, [&](std::size_t r) {
-        std::vector<std::uint32_t> stack{std::uint32_t(r)};
-        while (!stack.empty()) {
-            const std::uint32_t n = stack.back();
-            stack.pop_back();
-            if (h.is_leaf(n)) {
-                add_emit_shares(h, v, n, v.b[n]);
-                continue;
-            }
-            for (int c = 3; c >= 0; --c)
-                stack.push_back(std::uint32_t(h.first_child[n] + c));
-        }
-    });
-}
-
-// Push irradiance down and pull radiosity up in one tree; returns the node's new radiosity
-// and adds Σ A |ΔB| over the leaves to \p change.
-Rgb push_pull(const Hierarchy& h, NodeValues& v, std::uint32_t node, const Rgb& down_direct,
-              const Rgb& down_indirect, double& change) {
-    Rgb hd = down_direct + v.gathered_direct[node];
-    Rgb hi = down_indirect + v.gathered_indirect[node];
-    const bool weighted = !v.weights.empty();
-    Rgb b;
-    if (h.is_leaf(node)) {
-        // The ancestors' element links by this leaf's receive weights rather than evenly.
-        for (std::int32_t a = weighted ? h.parent[node] : -1; a >= 0; a = h.parent[a]) {
-            const float extra = v.weights.receive[v.weights.at(node, h.level[a])] - 1.0f;
-            hd += v.link_direct[a] * extra;
-            hi += v.link_indirect[a] * extra;
-        }
-        b = h.emission[node] + h.reflectance[node] * (hd + hi);
-        if (weighted)
-            add_emit_shares(h, v, node, b);
-        v.h_direct[node] = hd;
-        v.h_indirect[node] = hi;
-        v.b_lo[node] = v.b_hi[node] = b.max_component();
-        change += double((b - v.b[node]).sum() >= 0 ? (b - v.b[node]).sum()
-                                                    : -(b - v.b[node]).sum()) *
-                  h.area[node];
-    } else {
-        Rgb sum_b, sum_hd, sum_hi;
-        if (weighted)
-            v.b_emit[node] = Rgb{}; // the leaves below add their shares
-        v.b_lo[node] = 1e30f;
-        v.b_hi[node] = 0;
-        for (int c = 0; c < 4; ++c) {
-            const auto child = std::uint32_t(h.first_child[node] + c);
-            sum_b += push_pull(h, v, child, hd, hi, change);
-            sum_hd += v.h_direct[child];
-            sum_hi += v.h_indirect[child];
-            v.b_lo[node] = std::min(v.b_lo[node], v.b_lo[child]);
-            v.b_hi[node] = std::max(v.b_hi[node], v.b_hi[child]);
-        }
-        b = sum_b * 0.25f; // children have equal areas
-        v.h_direct[node] = sum_hd * 0.25f;
-        v.h_indirect[node] = sum_hi * 0.25f;
-    }
-    v.b[node] = b;
-    v.b_range[node] = v.b_hi[node] - v.b_lo[node];
-    return b;
-}
-
-/// The cluster tree and its values, when clustering.
-struct Clusters {
-    ClusterTree tree;
-    ClusterValues values;
-    bool enabled = false;
-};
-
-double sweep(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
-             double emitted) {
-    gather(h, links, v);
-    if (clusters.enabled) {
-        gather_cluster_links(h, clusters.tree, links, v.b, clusters.values, v.gathered_direct,
-                             v.gathered_indirect);
-        push_clusters(clusters.tree, h, clusters.values);
-    }
-    v.h_direct.resize(h.size());
-    v.h_indirect.resize(h.size());
-    v.b_lo.resize(h.size());
-    v.b_hi.resize(h.size());
-    std::vector<double> change(h.root_count, 0.0);
-    parallel_for_index(h.root_count, 16, [&](std::size_t r) {
-        const bool c = clusters.enabled;
-        push_pull(h, v, std::uint32_t(r), c ? clusters.values.root_direct[r] : Rgb{},
-                  c ? clusters.values.root_indirect[r] : Rgb{}, change[r]);
-    });
-    if (clusters.enabled)
-        pull_clusters(clusters.tree, h, v.b, clusters.values);
-    double total = 0;
-    for (double c : change)
-        total += c;
-    return total / std::max(emitted * 3.0, 1e-300); // change is summed over 3 channels
-}
-
-struct Solved {
-    int sweeps = 0;
-    double relative = 1;
-};
-
-// The roots are the input mesh's elements: their pulled values are a snapshot on it.
-Solution root_snapshot(const RadiosityMesh& mesh, const Hierarchy& h, const NodeValues& v) {
-    ElementResult er;
-    for (std::size_t r = 0; r < h.root_count; ++r) {
-        er.radiosity.push_back(v.b[r]);
-        er.h_direct.push_back(r < v.h_direct.size() ? v.h_direct[r] : Rgb{});
-        er.h_indirect.push_back(r < v.h_indirect.size() ? v.h_indirect[r] : Rgb{});
-    }
-    return snapshot_solution(mesh, er);
-}
-
-struct SweepLog {
-    const RadiosityMesh& mesh;
-    const SolveObserver* observer;
-    SolveStats* stats;
-    std::int64_t total = 0;
-};
-
-Solved solve_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
-                   const SolverSettings& settings, double emitted, SweepLog& log) {
-    Solved s;
-    while (s.sweeps < settings.max_sweeps && s.relative > settings.residual) {
-        s.relative = sweep(h, links, v, clusters, emitted);
-        ++s.sweeps;
-        ++log.total;
-        if (log.stats)
-            log.stats->residual_history.push_back(s.relative);
-        const SolveObserver* o = log.observer;
-        if (o && o->on_pass && o->every_shots > 0 && log.total % o->every_shots == 0)
-            o->on_pass(root_snapshot(log.mesh, h, v), log.total, s.relative, false);
-    }
-    return s;
 }
 
 } // namespace
@@ -303,18 +123,29 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     if (clusters.enabled)
         links.set_cluster_threshold(scene.solver.epsilon * emitted / clusters.tree.area[0]);
     SweepLog log{mesh, observer, stats};
+    const Iteration iteration = parse_iteration(scene.solver.iteration);
+    if (reuse && !reuse->weights.empty()) { // of the same links: geometry only
+        v.weights = reuse->weights;
+        pull_emit(h, v);
+    }
     if (reuse) // the oracle should see the new materials' radiosities
-        solve_links(h, links, v, clusters, scene.solver, emitted, log);
+        solve_links(h, links, v, clusters, scene.solver, iteration, emitted, log);
     for (int cycle = 0; cycle < k_max_cycles; ++cycle) {
         const bool changed = links.refine(v.b, v.b_range);
         if (changed || v.weights.empty()) {
             v.weights = leaf_weights(h, links, v.weights);
             pull_emit(h, v);
         }
-        Solved s = solve_links(h, links, v, clusters, scene.solver, emitted, log);
-        ctx.info("hierarchical: cycle {}: {} nodes, {} links, {} sweeps, change {:.2e}", cycle,
+        Solved s = solve_links(h, links, v, clusters, scene.solver, iteration, emitted, log);
+        if (s.limit_hit)
+            ctx.warn("hierarchical: cycle {} stopped at {} {} (solver.{}) with a change of "
+                     "{:.3g} of the emitted power, above solver.residual {:.3g}",
+                     cycle, s.sweeps, iteration == Iteration::shooting ? "shots" : "sweeps",
+                     iteration == Iteration::shooting ? "max_shots" : "max_sweeps", s.relative,
+                     scene.solver.residual);
+        ctx.info("hierarchical: cycle {}: {} nodes, {} links, {} {}, change {:.2e}", cycle,
                  h.size(), links.link_count(), s.sweeps,
-                 s.relative);
+                 iteration == Iteration::shooting ? "shots" : "sweeps", s.relative);
         progress.update(double(cycle + 1) / k_max_cycles);
         if (!changed && cycle > 0)
             break;
@@ -329,7 +160,15 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     ElementGeometry geo(leaf.mesh);
     RowSettings row_settings = rs.rows;
     SolveResult result;
-    result.solution = make_solution(scene, leaf.mesh, geo, er, visibility, row_settings, ctx);
+    // Vertices gather direct light from the emitting roots: the same surfaces as the emitting
+    // leaves, in fewer triangles.
+    const ElementGeometry root_geo(mesh);
+    std::vector<Rgb> root_emission(mesh.element_count());
+    for (std::size_t e = 0; e < root_emission.size(); ++e)
+        root_emission[e] = mesh.patch_of(std::uint32_t(e)).emission;
+    const DirectEmitters emitters{root_geo, direct_sources(scene, root_emission)};
+    result.solution =
+        make_solution(scene, leaf.mesh, geo, er, visibility, row_settings, ctx, &emitters);
     if (stats) {
         stats->shots = log.total;
         stats->links = links.link_count();
@@ -347,6 +186,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     state->links = links.links();
     state->cluster_links = links.cluster_links();
     state->radiosity = v.b;
+    state->weights = std::move(v.weights);
     state->hierarchy = std::move(h);
     result.state = std::move(state);
     result.refined_mesh = std::move(leaf.mesh);

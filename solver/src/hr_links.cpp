@@ -47,25 +47,35 @@ Link LinkSet::make_link(std::uint32_t q, std::uint32_t p) const {
 }
 
 LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
-    const Vec3 pos = lights_[l].position;
+    const PointLight& light = lights_[l];
+    const Vec3 pos = light.position;
     LightLink link{q, l, Rgb{}, 0, 0};
     if (dot(pos - h_.triangle[q][0], h_.normal[q]) <= 0)
         return link;
-    double e_min = 1e300, e_max = 0; // I cos θ / d² at the corners and the centroid
+    const ProfileRange profile = profile_range(light, h_.triangle[q]);
+    if (profile.hi <= 0)
+        return link; // outside a spot's cut-off
+    double e_min = 1e300, e_max = 0; // cos θ / d² at the corners and the centroid
     for (const Vec3& x : {h_.triangle[q][0], h_.triangle[q][1], h_.triangle[q][2], h_.centroid(q)}) {
         const Vec3 d = pos - x;
         const double e = std::max(0.0, dot(d, h_.normal[q])) / std::pow(dot(d, d), 1.5);
         e_min = std::min(e_min, e);
         e_max = std::max(e_max, e);
     }
-    link.spread = float((e_max - e_min) * double(lights_[l].intensity.max_component()));
-    const double omega = solid_angle_triangle(pos, h_.triangle[q]);
+    // The spread of I·profile·cos θ / d² takes the profile's exact range over the receiver, so
+    // that the oracle refines where a spot's falloff or cone edge crosses it.
+    link.spread = float((profile.hi * e_max - profile.lo * e_min) *
+                        double(light.intensity.max_component()));
+    const double omega = profile_solid_angle_triangle(light, h_.triangle[q]);
     Pcg32 rng = Pcg32::for_stream(RngPurpose::point_light_visibility, l, q, 1, settings_.rows.seed);
     const int rays = std::max(1, settings_.rows.visibility_rays);
     const int open = light_rays_open(pos, oriented(h_, q), settings_.offset, rays, visibility_, rng);
     const double v = double(open) / double(rays);
-    link.partial = open > 0 && open < rays;
-    link.irradiance = lights_[l].intensity * float(omega * v / h_.area[q]);
+    // A hard cone edge (beam = cut-off) across the receiver is a boundary like a shadow's.
+    const bool hard_edge = light.spot && light.spot->beam_deg == light.spot->cutoff_deg &&
+                           profile.varies();
+    link.partial = (open > 0 && open < rays) || hard_edge;
+    link.irradiance = light.intensity * float(omega * v / h_.area[q]);
     return link;
 }
 
@@ -241,15 +251,23 @@ bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range) {
     return changed;
 }
 
+// By receiver, then source: a counting sort by receiver (linear), then each receiver's few
+// links by source, in parallel.
 void LinkSet::sort_and_index() {
-    std::stable_sort(links_.begin(), links_.end(), [](const Link& a, const Link& b) {
-        return a.receiver != b.receiver ? a.receiver < b.receiver : a.source < b.source;
-    });
     offsets_.assign(h_.size() + 1, 0);
     for (const Link& l : links_)
         ++offsets_[l.receiver + 1];
     for (std::size_t n = 0; n < h_.size(); ++n)
         offsets_[n + 1] += offsets_[n];
+    std::vector<Link> sorted(links_.size());
+    std::vector<std::uint32_t> next(offsets_.begin(), offsets_.end() - 1);
+    for (const Link& l : links_)
+        sorted[next[l.receiver]++] = l;
+    links_ = std::move(sorted);
+    parallel_for_index(h_.size(), 256, [&](std::size_t q) {
+        std::stable_sort(links_.begin() + offsets_[q], links_.begin() + offsets_[q + 1],
+                         [](const Link& a, const Link& b) { return a.source < b.source; });
+    });
     if (tree_)
         index_cluster_links();
 }

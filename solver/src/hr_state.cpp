@@ -3,6 +3,7 @@
 
 #include "hr_state.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <fstream>
@@ -16,7 +17,7 @@ namespace penumbra::solver {
 
 namespace {
 
-constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '1'};
+constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '2'};
 
 class Writer {
 public:
@@ -110,6 +111,12 @@ void write_hierarchical_state(const HierarchicalState& s, const std::string& pat
         w.vec(s.links);
         w.vec(s.cluster_links);
         w.vec(s.radiosity);
+        w.vec(s.weights.offset);
+        w.vec(s.weights.receive);
+        w.vec(s.weights.emit);
+        w.vec(s.weights.raw_receive);
+        w.vec(s.weights.raw_emit);
+        w.vec(s.weights.signature);
         out.flush();
         if (!out)
             throw ExternalError("cannot write " + path);
@@ -126,6 +133,9 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
     Reader r(buffer.str(), path);
     char magic[sizeof(k_magic)];
     r.take(magic, sizeof(magic));
+    if (std::memcmp(magic, k_magic, sizeof(k_magic) - 1) == 0 &&
+        magic[sizeof(k_magic) - 1] != k_magic[sizeof(k_magic) - 1])
+        r.fail("written by another version of penumbra: bake again without --reuse");
     if (std::memcmp(magic, k_magic, sizeof(k_magic)) != 0)
         r.fail("bad magic word");
     auto s = std::make_shared<HierarchicalState>();
@@ -145,11 +155,33 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
     s->links = r.vec<Link>();
     s->cluster_links = r.vec<ClusterLink>();
     s->radiosity = r.vec<Rgb>();
+    LeafWeights& lw = s->weights;
+    lw.offset = r.vec<std::uint32_t>();
+    lw.receive = r.vec<float>();
+    lw.emit = r.vec<float>();
+    lw.raw_receive = r.vec<float>();
+    lw.raw_emit = r.vec<float>();
+    lw.signature = r.vec<std::uint64_t>();
     const std::size_t n = h.triangle.size();
+    const std::size_t entries = lw.offset.empty() ? 0 : lw.offset.back();
+    const bool weights_consistent =
+        lw.offset.empty()
+            ? lw.receive.empty() && lw.signature.empty()
+            : lw.offset.size() == n + 1 && lw.receive.size() == entries &&
+                  lw.emit.size() == entries && lw.raw_receive.size() == entries &&
+                  lw.raw_emit.size() == entries && lw.signature.size() == n &&
+                  h.first_child.size() == n && h.level.size() == n && [&] {
+                      for (std::size_t x = 0; x < n; ++x) // a leaf: one entry per ancestor
+                          if (lw.offset[x + 1] - lw.offset[x] !=
+                              std::uint32_t(h.first_child[x] < 0 ? h.level[x] : 0))
+                              return false;
+                      return true;
+                  }();
     const bool consistent = h.normal.size() == n && h.area.size() == n && h.patch.size() == n &&
                             h.parent.size() == n && h.first_child.size() == n &&
                             h.level.size() == n && s->twin.size() == n &&
-                            s->radiosity.size() == n && h.root_count <= n && r.done();
+                            s->radiosity.size() == n && h.root_count <= n &&
+                            weights_consistent && r.done();
     if (!consistent)
         r.fail("inconsistent sizes");
     const auto in_range = [n](std::uint32_t node) { return node < n; };

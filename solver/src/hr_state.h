@@ -12,6 +12,7 @@
 #include "core/mesh.h"
 #include "hierarchy.h"
 #include "hr_links.h"
+#include "hr_weights.h"
 #include "solver/solver.h"
 
 namespace penumbra::solver {
@@ -24,6 +25,7 @@ struct HierarchicalState {
     std::vector<Link> links;
     std::vector<ClusterLink> cluster_links;
     std::vector<Rgb> radiosity; ///< per node
+    LeafWeights weights;        ///< of the saved links (geometry only: reused as they are)
 };
 
 /// Hash of the elements' vertices, patches and twins: equal meshes, equal hashes.

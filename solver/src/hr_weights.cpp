@@ -14,40 +14,26 @@ namespace penumbra::solver {
 
 namespace {
 
-// Link indices grouped by source node, in link order (CSR).
-struct BySource {
-    std::vector<std::uint32_t> start, order;
-};
-
-BySource index_by_source(const Hierarchy& h, const std::vector<Link>& links) {
-    BySource s;
-    s.start.assign(h.size() + 1, 0);
-    for (const Link& l : links)
-        ++s.start[l.source + 1];
-    for (std::size_t n = 0; n < h.size(); ++n)
-        s.start[n + 1] += s.start[n];
-    std::vector<std::uint32_t> next(s.start.begin(), s.start.end() - 1);
-    s.order.resize(links.size());
-    for (std::size_t k = 0; k < links.size(); ++k)
-        s.order[next[links[k].source]++] = std::uint32_t(k);
-    return s;
+// One link as one word for the hash (far end, form factor's bits, occlusion): one mix per link.
+std::uint64_t link_word(std::uint32_t far_end, float ff, std::uint8_t partial) {
+    return (std::uint64_t(far_end) << 32 | std::bit_cast<std::uint32_t>(ff)) ^
+           (std::uint64_t(partial) << 63) ^ 0x632be59bd9b4e019ULL;
 }
 
 // A hash of each node's links as receiver and as source (far end, form factor, occlusion).
 std::vector<std::uint64_t> link_signatures(const Hierarchy& h, const LinkSet& links,
-                                           const BySource& by_source) {
+                                           const LinksBySource& by_source) {
     const std::vector<Link>& all = links.links();
     const std::vector<std::uint32_t>& by_receiver = links.receiver_offsets();
     std::vector<std::uint64_t> sig(h.size(), 0);
     parallel_for_index(h.size(), 256, [&](std::size_t a) {
         std::uint64_t s = mix64(a);
         for (std::uint32_t k = by_receiver[a]; k < by_receiver[a + 1]; ++k)
-            s = hash_words(
-                {s, all[k].source, std::bit_cast<std::uint32_t>(all[k].ff), all[k].partial});
+            s = mix64(s ^ link_word(all[k].source, all[k].ff, all[k].partial));
         s = mix64(s ^ 0x9e3779b97f4a7c15ULL); // receiving and sending links differ
         for (std::uint32_t i = by_source.start[a]; i < by_source.start[a + 1]; ++i) {
             const Link& l = all[by_source.order[i]];
-            s = hash_words({s, l.receiver, std::bit_cast<std::uint32_t>(l.ff), l.partial});
+            s = mix64(s ^ link_word(l.receiver, l.ff, l.partial));
         }
         sig[a] = s;
     });
@@ -94,7 +80,7 @@ struct RawWeight {
 
 // Leaf x's unscaled weights for its ancestor a (1 where a has no links of that kind). A partly
 // occluded link keeps its even spread: its visibility from x is not known without rays.
-RawWeight raw_weight(const Hierarchy& h, const LinkSet& links, const BySource& by_source,
+RawWeight raw_weight(const Hierarchy& h, const LinkSet& links, const LinksBySource& by_source,
                      const Ends& ends, std::uint32_t x, std::uint32_t a) {
     const std::vector<Link>& all = links.links();
     const std::vector<std::uint32_t>& by_receiver = links.receiver_offsets();
@@ -159,8 +145,22 @@ void scale_to_unit_means(const Hierarchy& h, LeafWeights& w) {
 
 } // namespace
 
+LinksBySource index_by_source(const Hierarchy& h, const std::vector<Link>& links) {
+    LinksBySource s;
+    s.start.assign(h.size() + 1, 0);
+    for (const Link& l : links)
+        ++s.start[l.source + 1];
+    for (std::size_t n = 0; n < h.size(); ++n)
+        s.start[n + 1] += s.start[n];
+    std::vector<std::uint32_t> next(s.start.begin(), s.start.end() - 1);
+    s.order.resize(links.size());
+    for (std::size_t k = 0; k < links.size(); ++k)
+        s.order[next[links[k].source]++] = std::uint32_t(k);
+    return s;
+}
+
 LeafWeights leaf_weights(const Hierarchy& h, const LinkSet& links, const LeafWeights& previous) {
-    const BySource by_source = index_by_source(h, links.links());
+    const LinksBySource by_source = index_by_source(h, links.links());
     LeafWeights w;
     w.signature = link_signatures(h, links, by_source);
     w.offset.assign(h.size() + 1, 0);

@@ -47,6 +47,12 @@ struct LeafWeights {
     }
 };
 
+/// Link indices grouped by source node, in link order (CSR): the links each node sends through.
+struct LinksBySource {
+    std::vector<std::uint32_t> start, order;
+};
+LinksBySource index_by_source(const Hierarchy& h, const std::vector<Link>& links);
+
 /// \brief The weights of every leaf for each of its ancestors: the far ends of the ancestor's
 ///        element links seen from the leaf's centroid (analytic point form factors, no rays).
 ///        Entries whose leaf and whose ancestor's links are as in \p previous (the last

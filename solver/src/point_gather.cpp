@@ -1,5 +1,5 @@
 // Point gathering: E(x) = Σ_s B_s F(x → s) V(x, s) over source triangles s, plus
-// I cos θ / d² V for point lights. Unoccluded values are exact (analytic F).
+// I profile cos θ / d² V for point lights. Unoccluded values are exact (analytic F).
 
 #include "point_gather.h"
 
@@ -12,24 +12,41 @@ namespace penumbra::solver {
 
 namespace {
 
-// Fraction of \p rays segments from p to random points of triangle s that are unblocked.
+// Visible fraction of triangle s from p. Four probe rays (the centroid, and the corners
+// pulled 2 % of the way to it) decide where they agree, as the hierarchical links'
+// probes do; where they disagree, the triangle is in p's penumbra and 4 × \p rays rays on a
+// jittered grid (stratified through the area-preserving square-to-triangle map) estimate it.
 double triangle_visibility(const ElementGeometry& geo, const VisibilityQuery& visibility,
                            const GatherPoint& p, std::uint32_t s, int rays, Pcg32& rng) {
-    std::vector<Segment> segments(std::size_t(std::max(rays, 1)));
     // As in element_rows.cpp: lift both ends off both planes where they meet at an angle.
     const double cross_weight = geo.offset * (1.0 - std::abs(dot(p.normal, geo.normal[s])));
     const Vec3 from = p.position + p.normal * geo.offset + geo.normal[s] * cross_weight;
-    for (Segment& seg : segments) {
-        Vec3 to = sample_triangle(geo.triangle[s], rng.next_double(), rng.next_double()) +
-                  geo.normal[s] * geo.offset + p.normal * cross_weight;
-        seg = {Vec3f(from), Vec3f(to - from), 0.0f, 1.0f};
-    }
-    std::vector<std::uint8_t> blocked(segments.size());
-    visibility.occluded(segments, blocked);
-    std::size_t open = 0;
-    for (auto b : blocked)
-        open += b ? 0 : 1;
-    return double(open) / double(segments.size());
+    const Vec3 lift = geo.normal[s] * geo.offset + p.normal * cross_weight;
+    auto open_fraction = [&](const std::vector<Vec3>& targets) {
+        std::vector<Segment> segments(targets.size());
+        for (std::size_t i = 0; i < targets.size(); ++i)
+            segments[i] = {Vec3f(from), Vec3f(targets[i] + lift - from), 0.0f, 1.0f};
+        std::vector<std::uint8_t> blocked(segments.size());
+        visibility.occluded(segments, blocked);
+        std::size_t open = 0;
+        for (auto b : blocked)
+            open += b ? 0 : 1;
+        return double(open) / double(segments.size());
+    };
+    const auto& t = geo.triangle[s];
+    const Vec3 c = (t[0] + t[1] + t[2]) / 3.0;
+    const double probe =
+        open_fraction({c, t[0] * 0.98 + c * 0.02, t[1] * 0.98 + c * 0.02, t[2] * 0.98 + c * 0.02});
+    if (probe == 0.0 || probe == 1.0)
+        return probe;
+    const int side = int(std::ceil(std::sqrt(double(4 * std::max(rays, 1)))));
+    std::vector<Vec3> targets;
+    targets.reserve(std::size_t(side * side));
+    for (int i = 0; i < side; ++i)
+        for (int j = 0; j < side; ++j)
+            targets.push_back(sample_triangle(t, (i + rng.next_double()) / side,
+                                              (j + rng.next_double()) / side));
+    return open_fraction(targets);
 }
 
 // Form factor from p to element s if s faces p, else 0.
@@ -59,12 +76,15 @@ Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
         double cos_theta = dot(d, p.normal) / std::sqrt(dist2);
         if (cos_theta <= 0)
             continue;
+        const double profile = light.profile(-d / std::sqrt(dist2));
+        if (profile <= 0)
+            continue; // outside a spot's cone: no ray needed
         Vec3 from = p.position + p.normal * geo.offset;
         Segment seg{Vec3f(from), Vec3f(light.position - from), 0.0f, 1.0f - 1e-6f};
         std::uint8_t blocked = 0;
         visibility.occluded({&seg, 1}, {&blocked, 1});
         if (!blocked)
-            sum += RgbD(light.intensity) * (cos_theta / dist2);
+            sum += RgbD(light.intensity) * (profile * cos_theta / dist2);
     }
     return Rgb(float(sum.r), float(sum.g), float(sum.b));
 }

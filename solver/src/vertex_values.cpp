@@ -49,7 +49,8 @@ Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& resul
 
 Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const ElementGeometry& geo,
                        ElementResult result, const VisibilityQuery& visibility,
-                       const RowSettings& settings, const Context& ctx) {
+                       const RowSettings& settings, const Context& ctx,
+                       const DirectEmitters* emitters) {
     Solution sol;
     sol.vertex_irradiance_indirect = area_weighted_vertex_mean(mesh, result.h_indirect);
     sol.radiosity = std::move(result.radiosity);
@@ -58,7 +59,9 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
     std::vector<Rgb> emission(mesh.element_count());
     for (std::size_t e = 0; e < emission.size(); ++e)
         emission[e] = mesh.patch_of(std::uint32_t(e)).emission;
-    const GatherSources sources = direct_sources(scene, emission);
+    const GatherSources own = emitters ? GatherSources{} : direct_sources(scene, emission);
+    const GatherSources& sources = emitters ? emitters->sources : own;
+    const ElementGeometry& source_geo = emitters ? emitters->geo : geo;
     const std::size_t nv = mesh.vertex_count();
     sol.vertex_irradiance_direct.resize(nv);
     sol.vertex_radiosity.resize(nv);
@@ -72,7 +75,8 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
             GatherPoint p{mesh.vertex(std::uint32_t(v)), patch.normal, v,
                           RngPurpose::vertex_visibility};
             sol.vertex_irradiance_direct[v] =
-                gather_direct(geo, sources, visibility, p, settings.visibility_rays, ctx.seed);
+                gather_direct(source_geo, sources, visibility, p, settings.visibility_rays,
+                              ctx.seed);
             Rgb h = sol.vertex_irradiance_direct[v] + sol.vertex_irradiance_indirect[v];
             sol.vertex_radiosity[v] = patch.emission + patch.reflectance * h;
         });

@@ -24,8 +24,18 @@ Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& resul
 /// \brief Packs element results and reconstructs vertex values: direct irradiance gathered at
 ///        each vertex itself (Wallace et al. 1989's vertex receivers), indirect as the
 ///        area-weighted mean of the vertex's elements, B = E + ρ H.
+/// \p emitters: where the vertices gather direct light from, if not \p mesh's own emitting
+/// elements: the same surfaces in fewer elements (hierarchical radiosity passes the roots, so
+/// that the rays per vertex do not grow with the emitters' refinement; emission is uniform
+/// over a root, and analytic form factors add up over a partition).
+struct DirectEmitters {
+    const ElementGeometry& geo;
+    GatherSources sources;
+};
+
 Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const ElementGeometry& geo,
                        ElementResult result, const VisibilityQuery& visibility,
-                       const RowSettings& settings, const Context& ctx);
+                       const RowSettings& settings, const Context& ctx,
+                       const DirectEmitters* emitters = nullptr);
 
 } // namespace penumbra::solver

@@ -94,6 +94,43 @@ TEST_F(CliBadInput, NoEmitter) {
     expect_error((dir_ / "dark.json").string(), {"dark.json", "no emitter"});
 }
 
+// Each bad spot: exit code 2 (a bad scene), one line naming the file and the key.
+TEST_F(CliBadInput, BadSpot) {
+    struct Case {
+        const char* spot;
+        const char* key;
+        const char* what;
+    };
+    const Case cases[] = {
+        {R"({"direction": [0, 0, 0], "beam_deg": 10, "cutoff_deg": 20})", "spot.direction",
+         "non-zero"},
+        {R"({"direction": [0, "NaN", -1], "beam_deg": 10, "cutoff_deg": 20})", "spot.direction",
+         "expected 3 numbers"},
+        {R"({"direction": [0, 0, -1], "beam_deg": 30, "cutoff_deg": 20})", "spot.beam_deg",
+         "cutoff_deg"},
+        {R"({"direction": [0, 0, -1], "beam_deg": 10, "cutoff_deg": 200})", "spot.cutoff_deg",
+         "180"},
+        {R"({"direction": [0, 0, -1], "beam_deg": 10, "cutoff_deg": 20, "angle": 5})",
+         "spot.angle", "unknown key"},
+    };
+    int i = 0;
+    for (const Case& c : cases) {
+        const fs::path scene = dir_ / ("spot" + std::to_string(i++) + ".json");
+        write(scene, good_scene(std::string(",\n  \"point_lights\": [{\"position\": [0.5, 0.5, "
+                                            "0.9], \"intensity_cd\": 10, \"spot\": ") +
+                                c.spot + "}]"));
+        const fs::path out = dir_ / "out";
+        RunResult r = run_cli("bake " + scene.string() + " -o " + out.string() + " -q");
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_EQ(r.err.rfind("penumbra: error: ", 0), 0u) << r.err;
+        for (const std::string& m : {scene.filename().string(),
+                                    std::string("point_lights[0].") + c.key, std::string(c.what)})
+            EXPECT_NE(r.err.find(m), std::string::npos) << "missing '" << m << "' in: " << r.err;
+        EXPECT_FALSE(fs::exists(out)) << "output left behind";
+    }
+}
+
 TEST_F(CliBadInput, UnwritableOutputFolder) {
     write(dir_ / "ok.json", good_scene());
     write(dir_ / "a_file", "x");
@@ -109,6 +146,19 @@ TEST_F(CliBadInput, BadFlag) {
     RunResult r = run_cli("bake " + (dir_ / "ok.json").string() + " --threads -3");
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+}
+
+// Solver choices: an unknown value of a scene key names the key and the known values; an
+// unknown flag value names the flag.
+TEST_F(CliBadInput, UnknownSolverChoice) {
+    write(dir_ / "iteration.json",
+          good_scene(R"(, "solver": {"iteration": "southwell"})"));
+    expect_error((dir_ / "iteration.json").string(),
+                 {"iteration.json", "solver.iteration", "southwell", "gauss_seidel"});
+    write(dir_ / "ok.json", good_scene());
+    RunResult r = run_cli("bake " + (dir_ / "ok.json").string() + " --iteration southwell -q");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("--iteration"), std::string::npos) << r.err;
 }
 
 TEST(Cli, BakeWritesEveryOutput) {

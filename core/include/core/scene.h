@@ -34,11 +34,33 @@ struct Polygon {
     std::string source;         ///< "file:face-index" for messages
 };
 
-/// \brief Isotropic point light.
+/// \brief The cone of a spot light: full intensity within the beam half-angle, none beyond
+///        the cut-off half-angle, and between them a smoothstep in cos θ (as pbrt-v4's
+///        SpotLight), so that the intensity and its slope are continuous.
+struct SpotCone {
+    Vec3 direction{0, 0, -1}; ///< unit beam axis
+    double beam_deg = 30;     ///< half-angle of full intensity, in [0, cutoff_deg]
+    double cutoff_deg = 45;   ///< half-angle beyond which nothing is emitted, in (0, 180]
+};
+
+/// \brief A point light: isotropic, or a spot when \p spot is set.
 struct PointLight {
     std::string name;
     Vec3 position;            ///< metres
-    Rgb intensity;            ///< radiant intensity, W/sr per channel
+    Rgb intensity;            ///< radiant intensity (on the axis for a spot), W/sr per channel
+    std::optional<SpotCone> spot;
+
+    /// \brief Intensity toward the unit direction \p unit_dir (from the light) relative to
+    ///        \p intensity: 1 for an isotropic light, in [0, 1] for a spot.
+    double profile(const Vec3& unit_dir) const;
+    /// \brief The same as a function of cos θ to the spot's axis (1 for an isotropic light).
+    double profile_cos(double cos_theta) const;
+    /// \brief ∫ profile dω over the sphere, sr: 4π for an isotropic light, and for a spot
+    ///        2π [(1 − cos beam) + (cos beam − cos cutoff) / 2] (the smoothstep integrates to
+    ///        half its interval).
+    double profile_solid_angle() const;
+    /// \brief Total radiant flux, W per channel: intensity × profile_solid_angle().
+    RgbD power() const;
 };
 
 /// \brief A sensor: a point and the normal of the receiving plane.
@@ -87,9 +109,12 @@ struct SolverSettings {
     double min_area = 0;          ///< hierarchical: m², smallest element; 0 = (diagonal / 200)²
     /// hierarchical: "auto" (clusters when the mesh has more than 3 000 elements), "on", "off".
     std::string clustering = "auto";
+    /// hierarchical: how each solve between refinements iterates: "jacobi", "gauss_seidel"
+    /// (by blocks of 32 roots) or "shooting" (progressive, Southwell, on the hierarchy).
+    std::string iteration = "jacobi";
     int max_sweeps = 500;         ///< gathering: most sweeps per solve
     bool ambient = false;         ///< add the ambient term (previews only)
-    std::int64_t max_shots = 0;   ///< 0 = 50 × element count
+    std::int64_t max_shots = 0;   ///< 0 = 10 000 × element count
     int visibility_rays = 16;     ///< rays per element pair that is not trivially visible
     double row_cache_mb = 2048;   ///< memory for cached form-factor rows
 };

@@ -13,6 +13,14 @@ namespace penumbra::app {
 
 namespace {
 
+class TerminalProgress;
+/// The progress bar on the terminal, if one is drawn: log lines clear its line first and
+/// redraw it after, so that messages never land on the bar's line.
+std::weak_ptr<TerminalProgress> g_bar;
+
+void clear_bar();
+void redraw_bar();
+
 class SpdlogSink final : public LogSink {
 public:
     SpdlogSink() : logger_(spdlog::stderr_color_mt("penumbra")) {
@@ -21,7 +29,10 @@ public:
     }
     ~SpdlogSink() override { spdlog::drop("penumbra"); }
     void write(LogLevel level, std::string_view message) override {
+        clear_bar();
         logger_->log(to_spdlog(level), "{}", message);
+        logger_->flush();
+        redraw_bar();
     }
 
 private:
@@ -42,6 +53,8 @@ class TerminalProgress final : public ProgressSink {
 public:
     void begin(std::string_view stage) override {
         std::lock_guard lock(mutex_);
+        if (shown_) // a stage within a stage: the new bar takes the line
+            std::fputs("\r\033[K", stderr);
         stage_ = stage;
         start_ = clock::now();
         last_draw_ = start_;
@@ -65,9 +78,25 @@ public:
         shown_ = false;
     }
 
+    /// Erases the bar's line (a log line follows).
+    void clear() {
+        std::lock_guard lock(mutex_);
+        if (shown_) {
+            std::fputs("\r\033[K", stderr);
+            std::fflush(stderr);
+        }
+    }
+    /// Draws the bar again where it was, after a log line.
+    void redraw() {
+        std::lock_guard lock(mutex_);
+        if (shown_)
+            draw(fraction_, clock::now());
+    }
+
 private:
     using clock = std::chrono::steady_clock;
     void draw(double fraction, clock::time_point now) {
+        fraction_ = fraction;
         constexpr int width = 40;
         int filled = int(fraction * width + 0.5);
         double elapsed = std::chrono::duration<double>(now - start_).count();
@@ -82,8 +111,19 @@ private:
     std::mutex mutex_;
     std::string stage_;
     clock::time_point start_, last_draw_;
+    double fraction_ = 0;
     bool shown_ = false;
 };
+
+void clear_bar() {
+    if (auto bar = g_bar.lock())
+        bar->clear();
+}
+
+void redraw_bar() {
+    if (auto bar = g_bar.lock())
+        bar->redraw();
+}
 
 } // namespace
 
@@ -92,7 +132,9 @@ std::shared_ptr<LogSink> make_stderr_log_sink() { return std::make_shared<Spdlog
 std::shared_ptr<ProgressSink> make_terminal_progress() {
     if (!::isatty(STDERR_FILENO))
         return nullptr;
-    return std::make_shared<TerminalProgress>();
+    auto bar = std::make_shared<TerminalProgress>();
+    g_bar = bar;
+    return bar;
 }
 
 } // namespace penumbra::app

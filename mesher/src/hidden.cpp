@@ -2,12 +2,20 @@
 // seen from just above it, every direction ends on the back of a surface (the inside of a box
 // whose faces point outwards) and no source is in view. Probe directions are a fixed
 // Fibonacci set over the hemisphere above 5° elevation, so the result is deterministic.
+// Whether a source is in view is decided over a tree of the source points: a node whose box
+// lies entirely behind one convex surface, as seen from the probe point, is dismissed without
+// a ray per source (the central projection of the box onto the surface's plane is the convex
+// hull of its corners' projections, and those lie inside the surface by a margin), so an
+// enclosed point costs about as many rays as there are groups of sources at the edges of its
+// enclosure's faces, not one per source in the scene. The outcome is the same as one ray per
+// source.
 
 #include "hidden.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
 
 namespace penumbra::mesher {
 
@@ -27,6 +35,24 @@ std::vector<Vec3> probe_directions() {
     return dirs;
 }
 
+Vec3 centre(const BBox& b) { return (b.lo + b.hi) * 0.5; }
+
+// A simple convex outline: no right turn and one full turn in all (counter-clockwise).
+bool convex_outline(const std::vector<Vec2>& outline) {
+    double turning = 0;
+    const std::size_t n = outline.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 a = outline[(i + n - 1) % n], b = outline[i], c = outline[(i + 1) % n];
+        const Vec2 u = b - a, v = c - b;
+        const double x = cross(u, v);
+        if (x < 0)
+            return false;
+        if (length(u) > 0 && length(v) > 0)
+            turning += std::atan2(x, dot(u, v));
+    }
+    return std::abs(turning - 2 * k_pi) < 1e-6;
+}
+
 } // namespace
 
 EnclosureTest::EnclosureTest(const Scene& scene, const std::vector<Surface>& surfaces,
@@ -44,21 +70,117 @@ EnclosureTest::EnclosureTest(const Scene& scene, const std::vector<Surface>& sur
     }
     for (const PointLight& light : scene.point_lights)
         sources_.push_back({light.position, -1});
+    if (!sources_.empty())
+        build_sources(0, std::uint32_t(sources_.size()));
+    convex_.resize(surfaces.size());
+    for (std::size_t i = 0; i < surfaces.size(); ++i)
+        convex_[i] = convex_outline(surfaces[i].outline2d);
+}
+
+std::int32_t EnclosureTest::build_sources(std::uint32_t first, std::uint32_t count) {
+    const auto index = std::int32_t(source_nodes_.size());
+    source_nodes_.emplace_back();
+    BBox box;
+    for (std::uint32_t i = first; i < first + count; ++i)
+        box.extend(sources_[i].position);
+    source_nodes_[std::size_t(index)].box = box;
+    if (count <= 4) {
+        source_nodes_[std::size_t(index)].first = first;
+        source_nodes_[std::size_t(index)].count = count;
+        return index;
+    }
+    const Vec3 extent = box.hi - box.lo;
+    const std::size_t axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                             : extent.y >= extent.z                        ? 1
+                                                                           : 2;
+    const std::uint32_t half = count / 2;
+    std::nth_element(sources_.begin() + first, sources_.begin() + first + half,
+                     sources_.begin() + first + count,
+                     [&](const SourcePoint& a, const SourcePoint& b) {
+                         return a.position[axis] < b.position[axis];
+                     });
+    const std::int32_t left = build_sources(first, half);
+    const std::int32_t right = build_sources(first + half, count - half);
+    source_nodes_[std::size_t(index)].left = left;
+    source_nodes_[std::size_t(index)].right = right;
+    return index;
+}
+
+// Whether every segment from q to a point of the convex hull of \p points crosses the convex,
+// non-emitting surface \p blocker at least a margin inside its outline and away from both ends:
+// then each source there is occluded by it, as sees() would find (the central projection of
+// the hull onto the surface's plane is the convex hull of the points' projections).
+bool EnclosureTest::blocks(const Vec3& q, std::int32_t blocker,
+                           std::span<const Vec3> points) const {
+    if (blocker < 0 || !convex_[std::size_t(blocker)])
+        return false;
+    const Surface& p = surfaces_[std::size_t(blocker)];
+    if (p.emits_front || p.emits_back) // a source's own surface never occludes it
+        return false;
+    const double margin = 1e-8 * (params_.diagonal + length(q));
+    const double dq = p.distance(q);
+    if (std::abs(dq) <= margin)
+        return false;
+    for (const Vec3& c : points) {
+        const double dc = p.distance(c);
+        if (!(dq > 0 ? dc < -margin : dc > margin))
+            return false;
+        const double t = dq / (dq - dc);
+        if (!(t > 1e-6 && t < 1.0 - 1e-6))
+            return false;
+        const Vec2 x = p.to_2d(q + (c - q) * t);
+        if (!point_in_polygon(x, p.outline2d) || distance_to_boundary(x, p.outline2d) <= margin)
+            return false;
+    }
+    return true;
+}
+
+bool EnclosureTest::blocks(const Vec3& q, std::int32_t blocker, const BBox& box) const {
+    std::array<Vec3, 8> corners;
+    for (std::size_t k = 0; k < 8; ++k)
+        corners[k] = Vec3((k & 1) ? box.hi.x : box.lo.x, (k & 2) ? box.hi.y : box.lo.y,
+                          (k & 4) ? box.hi.z : box.lo.z);
+    return blocks(q, blocker, std::span<const Vec3>(corners));
+}
+
+bool EnclosureTest::sees(const Vec3& q, const SourcePoint& src) const {
+    if (src.surface >= 0) {
+        const Surface& e = surfaces_[std::size_t(src.surface)];
+        const double d = e.distance(q);
+        if (!((d > 0 && e.emits_front) || (d < 0 && e.emits_back)))
+            return false;
+    }
+    // The probed surface itself is not skipped: a source on its other side is behind it.
+    const std::array<std::uint32_t, 1> skip{std::uint32_t(std::max(src.surface, 0))};
+    const std::span<const std::uint32_t> skips(skip.data(), src.surface >= 0 ? 1 : 0);
+    return !bvh_.occluded(q, src.position - q, 1e-9, 1.0 - 1e-9, skips);
 }
 
 bool EnclosureTest::sees_a_source(const Vec3& q) const {
-    for (const SourcePoint& src : sources_) {
-        if (src.surface >= 0) {
-            const Surface& e = surfaces_[std::size_t(src.surface)];
-            const double d = e.distance(q);
-            if (!((d > 0 && e.emits_front) || (d < 0 && e.emits_back)))
-                continue;
+    if (source_nodes_.empty())
+        return false;
+    struct Item {
+        std::int32_t node, blocker; ///< blocker: the surface that hid the parent's centre
+    };
+    std::vector<Item> stack{{0, -1}};
+    while (!stack.empty()) {
+        const Item item = stack.back();
+        stack.pop_back();
+        const SourceNode& node = source_nodes_[std::size_t(item.node)];
+        if (blocks(q, item.blocker, node.box))
+            continue;
+        if (node.left < 0) {
+            for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+                if (!blocks(q, item.blocker, std::span(&sources_[i].position, 1)) &&
+                    sees(q, sources_[i]))
+                    return true;
+            continue;
         }
-        // The probed surface itself is not skipped: a source on its other side is behind it.
-        const std::array<std::uint32_t, 1> skip{std::uint32_t(std::max(src.surface, 0))};
-        const std::span<const std::uint32_t> skips(skip.data(), src.surface >= 0 ? 1 : 0);
-        if (!bvh_.occluded(q, src.position - q, 1e-9, 1.0 - 1e-9, skips))
-            return true;
+        const std::int32_t blocker = bvh_.first_hit(q, centre(node.box) - q, 0.0, 1.0).surface;
+        if (blocker != item.blocker && blocks(q, blocker, node.box))
+            continue;
+        stack.push_back({node.right, blocker});
+        stack.push_back({node.left, blocker});
     }
     return false;
 }

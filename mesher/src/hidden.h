@@ -3,6 +3,7 @@
 // inside of a closed object): decided per region between contact lines, by probe rays.
 
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "core/scene.h"
@@ -29,17 +30,30 @@ public:
                   const HiddenAt& hidden_at = nullptr) const;
 
 private:
-    bool sees_a_source(const Vec3& q) const;
-
     struct SourcePoint {
         Vec3 position;
         std::int32_t surface = -1; ///< -1 for a point light
     };
+    /// A node of the tree over the source points: leaves hold sources_[first, first + count).
+    struct SourceNode {
+        BBox box;
+        std::int32_t left = -1, right = -1;
+        std::uint32_t first = 0, count = 0;
+    };
+
+    bool sees_a_source(const Vec3& q) const;
+    bool sees(const Vec3& q, const SourcePoint& src) const;
+    bool blocks(const Vec3& q, std::int32_t blocker, std::span<const Vec3> points) const;
+    bool blocks(const Vec3& q, std::int32_t blocker, const BBox& box) const;
+    std::int32_t build_sources(std::uint32_t first, std::uint32_t count);
+
     const std::vector<Surface>& surfaces_;
     const SurfaceBvh& bvh_;
     MeshParams params_;
     std::vector<Vec3> directions_; ///< unit, around +z
     std::vector<SourcePoint> sources_;
+    std::vector<SourceNode> source_nodes_;
+    std::vector<bool> convex_; ///< per surface: a convex outline, usable to cull sources
 };
 
 } // namespace penumbra::mesher

@@ -6,6 +6,8 @@
 
 #include "mesher/mesher.h"
 
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cmath>
 
@@ -56,20 +58,32 @@ RefineSettings refine_settings(const Surface& s, const PreparedSurface& prepared
     return r;
 }
 
+// Refines every surface; with \p last, each surface's triangulator is freed once it is
+// refined (the region triangulations of half a million surfaces take gigabytes). Surfaces
+// without one (no contact splitting) get theirs built here and dropped at once.
 std::vector<SurfaceTriangulation> triangulate_all(const std::vector<Surface>& surfaces,
-                                                  const std::vector<PreparedSurface>& prepared,
+                                                  std::vector<PreparedSurface>& prepared,
                                                   const MeshParams& params, double max_edge,
-                                                  const Context& ctx) {
+                                                  bool last, const Context& ctx) {
     std::vector<SurfaceTriangulation> out(surfaces.size());
     run_in_arena(ctx, [&] {
         parallel_for_index(surfaces.size(), 1, [&](std::size_t i) {
             const RefineSettings rs = refine_settings(surfaces[i], prepared[i], params, max_edge);
             try {
-                out[i] = prepared[i].triangulator->refine(prepared[i].extra, rs);
+                std::unique_ptr<SurfaceTriangulator> own;
+                const SurfaceTriangulator* triangulator = prepared[i].triangulator.get();
+                if (!triangulator) {
+                    own = std::make_unique<SurfaceTriangulator>(surfaces[i].outline2d,
+                                                                prepared[i].cuts, params.merge);
+                    triangulator = own.get();
+                }
+                out[i] = triangulator->refine(prepared[i].extra, rs);
             } catch (const ExternalError& e) {
                 throw InputError("", "", fmt::format("cannot triangulate surface {}: {}",
                                                      surfaces[i].name, e.what()));
             }
+            if (last)
+                prepared[i].triangulator.reset();
         });
     });
     for (std::size_t i = 0; i < surfaces.size(); ++i)
@@ -92,15 +106,17 @@ std::size_t element_count(const std::vector<SurfaceTriangulation>& tris) {
     return n;
 }
 
-// Refines every surface; grows the size bound while the element budget is exceeded.
+// Refines every surface; grows the size bound while the element budget is exceeded. The
+// triangulators are freed by the attempt that is certainly the last.
 std::vector<SurfaceTriangulation> refine_within_budget(const std::vector<Surface>& surfaces,
-                                                       const std::vector<PreparedSurface>& prepared,
+                                                       std::vector<PreparedSurface>& prepared,
                                                        const MeshParams& params, double& max_edge,
                                                        const Context& ctx) {
     max_edge = params.max_edge;
     std::vector<SurfaceTriangulation> tris;
     for (int attempt = 0;; ++attempt) {
-        tris = triangulate_all(surfaces, prepared, params, max_edge, ctx);
+        const bool last = params.budget <= 0 || attempt == 3;
+        tris = triangulate_all(surfaces, prepared, params, max_edge, last, ctx);
         const std::size_t n = element_count(tris);
         if (params.budget <= 0 || n <= std::size_t(params.budget))
             return tris;
@@ -127,6 +143,25 @@ void record_discontinuities(RadiosityMesh& mesh, const std::vector<Surface>& sur
                                             std::uint32_t(s), d.source, d.order});
 }
 
+/// Logs (debug) the seconds of each meshing stage and the peak RSS so far, for profiling at
+/// scale.
+class StageTimer {
+public:
+    explicit StageTimer(const Context& ctx) : ctx_(ctx), last_(std::chrono::steady_clock::now()) {}
+    void lap(const char* stage) {
+        const auto now = std::chrono::steady_clock::now();
+        rusage usage{};
+        ::getrusage(RUSAGE_SELF, &usage);
+        ctx_.debug("mesh: {} {:.2f} s (peak RSS {} MiB)", stage,
+                   std::chrono::duration<double>(now - last_).count(), usage.ru_maxrss / 1024);
+        last_ = now;
+    }
+
+private:
+    const Context& ctx_;
+    std::chrono::steady_clock::time_point last_;
+};
+
 void log_summary(const Context& ctx, const Scene& scene, const RadiosityMesh& mesh,
                  const std::vector<SurfaceContacts>& contacts, double max_edge, double seconds) {
     std::size_t cuts = 0;
@@ -150,24 +185,33 @@ void log_summary(const Context& ctx, const Scene& scene, const RadiosityMesh& me
 
 RadiosityMesh build_mesh(const Scene& scene, const Context& ctx) {
     const auto start = std::chrono::steady_clock::now();
+    StageTimer timer(ctx);
     const MeshParams params = resolve_params(scene);
     const std::vector<Surface> surfaces = build_surfaces(scene, params, ctx);
+    timer.lap("surfaces");
     const SurfaceBvh bvh(surfaces);
+    timer.lap("surface bvh");
     const std::vector<SurfaceContacts> contacts = find_contacts(surfaces, bvh, params, ctx);
+    timer.lap("contacts");
     const std::vector<std::vector<ReceiverSegment>> discontinuities =
         find_discontinuities(scene, surfaces, bvh, params, ctx);
-    const std::vector<PreparedSurface> prepared =
+    timer.lap("discontinuities");
+    std::vector<PreparedSurface> prepared =
         prepare_surfaces(scene, surfaces, bvh, contacts, discontinuities, params, ctx);
+    timer.lap("regions");
     double max_edge = 0;
     const std::vector<SurfaceTriangulation> tris =
         refine_within_budget(surfaces, prepared, params, max_edge, ctx);
+    prepared = std::vector<PreparedSurface>(); // the triangulators are done with
+    timer.lap("refinement");
 
     RadiosityMesh mesh;
     mesh.scene_diagonal = params.diagonal;
-    for (std::size_t i = 0; i < surfaces.size(); ++i)
-        append_surface(mesh, scene, surfaces[i], tris[i]);
+    append_surfaces(mesh, scene, surfaces, tris, ctx);
     record_discontinuities(mesh, surfaces, discontinuities);
-    check_patches(mesh);
+    timer.lap("assembly");
+    check_patches(mesh, ctx);
+    timer.lap("manifold check");
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     log_summary(ctx, scene, mesh, contacts, max_edge, seconds);

@@ -15,12 +15,22 @@ bool boxes_overlap(const BBox& a, const BBox& b) {
            a.lo.z <= b.hi.z && b.lo.z <= a.hi.z;
 }
 
-// Slab test of the ray against the box, widened by a relative epsilon so that flat boxes of
-// planar surfaces are never missed.
-bool ray_hits_box(const BBox& b, const Vec3& o, const Vec3& inv, double t0, double t1) {
-    for (int k = 0; k < 3; ++k) {
+// The box widened by a relative epsilon, so that flat boxes of planar surfaces are never
+// missed by the slab test.
+BBox padded(const BBox& b) {
+    BBox out = b;
+    for (std::size_t k = 0; k < 3; ++k) {
         const double pad = 1e-9 * (std::abs(b.hi[k]) + std::abs(b.lo[k])) + 1e-12;
-        double ta = (b.lo[k] - pad - o[k]) * inv[k], tb = (b.hi[k] + pad - o[k]) * inv[k];
+        out.lo[k] = b.lo[k] - pad;
+        out.hi[k] = b.hi[k] + pad;
+    }
+    return out;
+}
+
+// Slab test of the ray against a padded box.
+bool ray_hits_box(const BBox& b, const Vec3& o, const Vec3& inv, double t0, double t1) {
+    for (std::size_t k = 0; k < 3; ++k) {
+        double ta = (b.lo[k] - o[k]) * inv[k], tb = (b.hi[k] - o[k]) * inv[k];
         if (ta > tb)
             std::swap(ta, tb);
         if (std::isnan(ta) || std::isnan(tb))
@@ -45,6 +55,27 @@ SurfaceBvh::SurfaceBvh(const std::vector<Surface>& surfaces) : surfaces_(surface
         order_[i] = i;
     if (!order_.empty())
         build(0, std::uint32_t(order_.size()));
+    ray_boxes_.reserve(nodes_.size());
+    for (const Node& node : nodes_)
+        ray_boxes_.push_back(padded(node.box));
+    // Hits at exactly equal t go to the surface met first by the depth-first traversal that
+    // pops the right child first (the order first_hit always had); rank them once.
+    tie_rank_.resize(surfaces.size());
+    std::uint32_t rank = 0;
+    std::vector<std::int32_t> stack;
+    if (!nodes_.empty())
+        stack.push_back(0);
+    while (!stack.empty()) {
+        const Node& node = nodes_[std::size_t(stack.back())];
+        stack.pop_back();
+        if (node.left >= 0) {
+            stack.push_back(node.left);
+            stack.push_back(node.right);
+            continue;
+        }
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+            tie_rank_[order_[i]] = rank++;
+    }
 }
 
 std::int32_t SurfaceBvh::build(std::uint32_t first, std::uint32_t count) {
@@ -76,6 +107,7 @@ std::int32_t SurfaceBvh::build(std::uint32_t first, std::uint32_t count) {
     const std::int32_t right = build(first + half, count - half);
     nodes_[std::size_t(index)].left = left;
     nodes_[std::size_t(index)].right = right;
+    nodes_[std::size_t(index)].axis = std::uint8_t(axis);
     return index;
 }
 
@@ -112,12 +144,16 @@ void SurfaceBvh::traverse(const Vec3& origin, const Vec3& dir, double t0, double
     std::size_t top = 0;
     stack[top++] = 0;
     while (top > 0) {
-        const Node& node = nodes_[std::size_t(stack[--top])];
-        if (!ray_hits_box(node.box, origin, inv, t0, t1))
+        const std::size_t index = std::size_t(stack[--top]);
+        if (!ray_hits_box(ray_boxes_[index], origin, inv, t0, t1))
             continue;
+        const Node& node = nodes_[index];
         if (node.left >= 0) {
-            stack[top++] = node.left;
-            stack[top++] = node.right;
+            // The child nearer along the ray is popped first, so that t1 shrinks early: the
+            // left one holds the lower half along the split axis.
+            const bool left_first = dir[node.axis] >= 0;
+            stack[top++] = left_first ? node.right : node.left;
+            stack[top++] = left_first ? node.left : node.right;
             continue;
         }
         for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
@@ -126,7 +162,7 @@ void SurfaceBvh::traverse(const Vec3& origin, const Vec3& dir, double t0, double
             if (denom == 0)
                 continue;
             const double t = (s.offset - dot(s.normal, origin)) / denom;
-            if (!(t > t0 && t < t1) || !s.contains(origin + dir * t))
+            if (!(t > t0 && t <= t1) || !s.contains(origin + dir * t))
                 continue;
             if (visit(order_[i], t, denom > 0))
                 return;
@@ -137,12 +173,14 @@ void SurfaceBvh::traverse(const Vec3& origin, const Vec3& dir, double t0, double
 SurfaceBvh::Hit SurfaceBvh::first_hit(const Vec3& origin, const Vec3& dir, double t0, double t1,
                                       std::span<const std::uint32_t> skip) const {
     Hit hit;
+    const double t_end = t1;
     traverse(origin, dir, t0, t1, [&](std::uint32_t s, double t, bool back) {
-        if (skipped(skip, s))
+        if (!(t < t_end) || skipped(skip, s))
             return false;
-        if (hit.surface < 0 || t < hit.t || (t == hit.t && std::int32_t(s) < hit.surface)) {
+        if (hit.surface < 0 || t < hit.t ||
+            (t == hit.t && tie_rank_[s] < tie_rank_[std::size_t(hit.surface)])) {
             hit = {std::int32_t(s), t, back};
-            t1 = t; // only closer hits matter from now on
+            t1 = t; // only closer hits, and equal ones for the tie rule, matter from now on
         }
         return false;
     });
@@ -152,8 +190,8 @@ SurfaceBvh::Hit SurfaceBvh::first_hit(const Vec3& origin, const Vec3& dir, doubl
 bool SurfaceBvh::occluded(const Vec3& origin, const Vec3& dir, double t0, double t1,
                           std::span<const std::uint32_t> skip) const {
     bool blocked = false;
-    traverse(origin, dir, t0, t1, [&](std::uint32_t s, double, bool) {
-        blocked = !skipped(skip, s);
+    traverse(origin, dir, t0, t1, [&](std::uint32_t s, double t, bool) {
+        blocked = t < t1 && !skipped(skip, s);
         return blocked;
     });
     return blocked;

@@ -24,7 +24,8 @@ public:
         double t = 0;
         bool back = false; ///< the ray met the surface's back side
     };
-    /// Closest surface crossed by origin + t·dir for t in (t0, t1), ignoring \p skip.
+    /// Closest surface crossed by origin + t·dir for t in (t0, t1), ignoring \p skip; of
+    /// surfaces crossed at exactly the same t, the one of lowest tie rank (a fixed order).
     Hit first_hit(const Vec3& origin, const Vec3& dir, double t0, double t1,
                   std::span<const std::uint32_t> skip = {}) const;
     /// Whether any surface but those in \p skip crosses origin + t·dir for t in (t0, t1).
@@ -36,6 +37,7 @@ private:
         BBox box;
         std::int32_t left = -1, right = -1; ///< children, -1 for a leaf
         std::uint32_t first = 0, count = 0; ///< leaf range in order_
+        std::uint8_t axis = 0;              ///< split axis: left holds the lower half
     };
     std::int32_t build(std::uint32_t first, std::uint32_t count);
     template <typename Visit>
@@ -43,7 +45,9 @@ private:
 
     const std::vector<Surface>& surfaces_;
     std::vector<Node> nodes_;
+    std::vector<BBox> ray_boxes_; ///< per node, padded for the slab test
     std::vector<std::uint32_t> order_;
+    std::vector<std::uint32_t> tie_rank_; ///< per surface
 };
 
 } // namespace penumbra::mesher

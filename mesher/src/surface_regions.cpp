@@ -29,12 +29,14 @@ std::vector<Segment2> cut_constraints(const Surface& s, const SurfaceContacts& c
 PreparedSurface prepare_one(const Surface& s, const SurfaceContacts& c,
                             const std::vector<ReceiverSegment>& disc, const MeshParams& params) {
     PreparedSurface out;
-    const std::vector<Segment2> cuts = cut_constraints(s, c, params);
-    out.triangulator = std::make_unique<SurfaceTriangulator>(s.outline2d, cuts, params.merge);
+    out.cuts = cut_constraints(s, c, params);
+    if (params.split_contacts)
+        out.triangulator =
+            std::make_unique<SurfaceTriangulator>(s.outline2d, out.cuts, params.merge);
     std::vector<Segment2> raw;
     for (const ReceiverSegment& d : disc)
         raw.push_back(d.segment);
-    out.extra = clean_segments(s.outline2d, raw, cuts, params.snap, params.merge);
+    out.extra = clean_segments(s.outline2d, raw, out.cuts, params.snap, params.merge);
     return out;
 }
 

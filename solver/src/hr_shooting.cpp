@@ -270,17 +270,21 @@ Solved shoot_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clus
             log.stats->residual_history.push_back(relative);
         ++log.total;
         if (o && o->on_pass && o->every_shots > 0 && log.total % o->every_shots == 0) {
-            pull_all(h, v);
+            pull_all(h, v); // a preview: light still pending in unshot trees is not in it
             o->on_pass(root_snapshot(log.mesh, h, v), log.total, relative, false);
         }
     }
-    s.limit_hit = shots >= max_shots;
+    const bool stopped = shots >= max_shots && shooter.unshot_power() > target;
+    shooter.cluster_round(); // what the last shots sent through cluster links
     shooter.flush_all();
     pull_all(h, v);
+    if (clusters.enabled) // the cluster links' sources as the shots left them
+        pull_clusters(clusters.tree, h, v.b, clusters.values);
     // A last sweep: the split into direct and indirect light and the inner nodes as a
     // gathering solve leaves them, and one more step toward the solution.
     s.relative = sweep_jacobi(h, links, v, clusters, emitted);
     record_pass(h, v, log, s.relative, true);
+    s.limit_hit = stopped || s.relative > settings.residual;
     s.sweeps = int(std::min<std::int64_t>(shots, 1 << 30));
     return s;
 }

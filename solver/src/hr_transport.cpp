@@ -3,6 +3,7 @@
 #include "hr_transport.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -92,8 +93,8 @@ Rgb push_pull(const Hierarchy& h, NodeValues& v, std::uint32_t node, const Rgb& 
         v.h_direct[node] = hd;
         v.h_indirect[node] = hi;
         v.b_lo[node] = v.b_hi[node] = b.max_component();
-        const float d = (b - v.b[node]).sum();
-        change += double(d >= 0 ? d : -d) * h.area[node];
+        const Rgb d = b - v.b[node];
+        change += (double(std::abs(d.r)) + std::abs(d.g) + std::abs(d.b)) * h.area[node];
     } else {
         Rgb sum_b, sum_hd, sum_hi;
         if (weighted)
@@ -126,7 +127,7 @@ double push_pull_root(const Hierarchy& h, NodeValues& v, const Clusters& cluster
     return change;
 }
 
-// Radiosity of \p node pulled from its leaves (ranges and b_emit too).
+// Radiosity of \p node pulled from its leaves (irradiances, ranges and b_emit too).
 Rgb pull(const Hierarchy& h, NodeValues& v, std::uint32_t node) {
     if (h.is_leaf(node)) {
         if (!v.weights.empty())
@@ -135,16 +136,20 @@ Rgb pull(const Hierarchy& h, NodeValues& v, std::uint32_t node) {
     } else {
         if (!v.weights.empty())
             v.b_emit[node] = Rgb{};
-        Rgb sum;
+        Rgb sum, sum_hd, sum_hi;
         v.b_lo[node] = 1e30f;
         v.b_hi[node] = 0;
         for (int c = 0; c < 4; ++c) {
             const auto child = std::uint32_t(h.first_child[node] + c);
             sum += pull(h, v, child);
+            sum_hd += v.h_direct[child];
+            sum_hi += v.h_indirect[child];
             v.b_lo[node] = std::min(v.b_lo[node], v.b_lo[child]);
             v.b_hi[node] = std::max(v.b_hi[node], v.b_hi[child]);
         }
-        v.b[node] = sum * 0.25f;
+        v.b[node] = sum * 0.25f; // children have equal areas
+        v.h_direct[node] = sum_hd * 0.25f;
+        v.h_indirect[node] = sum_hi * 0.25f;
     }
     v.b_range[node] = v.b_hi[node] - v.b_lo[node];
     return v.b[node];

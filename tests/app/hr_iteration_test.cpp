@@ -71,8 +71,9 @@ TEST(HierarchicalIterations, AgreeOnTheSameLinks) {
 }
 
 // With refinement and with clustering: refinement reads the radiosities, which each iteration
-// leaves within the residual of the solution, so the hierarchies may differ by a few links;
-// the solutions, compared on the input elements (area means of their leaves), agree to 2e-3.
+// leaves within the residual of the solution, so the hierarchies could differ by a few links;
+// the solutions, compared per input polygon and side (area means of their leaves), agree to
+// 1e-4, the tolerance for methods on the same elements (measured: 1.4e-7).
 TEST(HierarchicalIterations, AgreeWithRefinementAndClusters) {
     Scene scene = cornell(0.1);
     scene.solver.epsilon = 1e-2;
@@ -104,7 +105,7 @@ TEST(HierarchicalIterations, AgreeWithRefinementAndClusters) {
         const app::BakeResult r = bake(scene, iteration);
         const auto [b, a] = root_means(r);
         ASSERT_EQ(b.size(), ref.size());
-        EXPECT_LT(relative_l1(b, ref, area), 2e-3) << iteration;
+        EXPECT_LT(relative_l1(b, ref, area), 1e-4) << iteration;
         EXPECT_NEAR(r.stats.power.relative_imbalance(), jacobi.stats.power.relative_imbalance(),
                     2e-3)
             << iteration;

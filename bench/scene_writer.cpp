@@ -183,6 +183,12 @@ void put_lights_and_sensors(Json& j, const Scene& scene) {
                              {"cutoff_deg", l.spot->cutoff_deg}};
         j["point_lights"].push_back(light);
     }
+    if (scene.sun) {
+        const Rgb& e = scene.sun->irradiance;
+        j["sun"] = {{"direction", xyz(scene.sun->direction)},
+                    {"irradiance_w_m2", {e.r, e.g, e.b}},
+                    {"angular_diameter_deg", scene.sun->angular_diameter_deg}};
+    }
     for (const Sensor& s : scene.sensors)
         j["sensors"].push_back(
             {{"name", s.name}, {"position", xyz(s.position)}, {"normal", xyz(s.normal)}});

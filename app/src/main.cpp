@@ -127,9 +127,9 @@ int run_view(const app::ViewRequest& request, const CommonFlags& common) {
 int run_validate(const std::string& path, const CommonFlags& common) {
     Context ctx = make_context(common);
     Scene scene = load_scene(path);
-    ctx.info("{}: {} polygons, {} materials, {} point lights, {} sensors{}", path,
+    ctx.info("{}: {} polygons, {} materials, {} point lights{}, {} sensors{}", path,
              scene.polygons.size(), scene.materials.size(), scene.point_lights.size(),
-             scene.sensors.size(), scene.camera ? ", camera" : "");
+             scene.sun ? ", sun" : "", scene.sensors.size(), scene.camera ? ", camera" : "");
     return k_ok;
 }
 

@@ -1,6 +1,7 @@
 // Text outputs of a bake: summary.json and sensors.csv.
 
 #include <cmath>
+#include <string>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -15,15 +16,19 @@ nlohmann::json rgb_json(const RgbD& c) {
     return {{"rgb_w", {c.r, c.g, c.b}}, {"lm", to_photometric(c)}};
 }
 
-nlohmann::json balance_json(const solver::PowerBalance& pb) {
+nlohmann::json balance_json(const solver::PowerBalance& pb, bool sun) {
     nlohmann::json j;
     j["emitted"] = rgb_json(pb.emitted);
     j["absorbed"] = rgb_json(pb.absorbed);
     j["escaped"] = rgb_json(pb.escaped);
     j["residual_unshot"] = rgb_json(pb.residual);
     j["relative_imbalance"] = pb.relative_imbalance();
-    j["note"] = "emitted = absorbed + escaped + residual_unshot + imbalance; escaped is "
-                "estimated by its own rays, imbalance is discretisation and sampling error";
+    std::string note = "emitted = absorbed + escaped + residual_unshot + imbalance; escaped is "
+                       "estimated by its own rays, imbalance is discretisation and sampling error";
+    if (sun)
+        note += "; the sun's share of emitted is the power its direct light delivers to the "
+                "scene's surfaces (sum of E_direct,sun * A), none of which escapes";
+    j["note"] = note;
     return j;
 }
 
@@ -52,7 +57,7 @@ std::string summary_json(const Scene& scene, const BakeResult& result) {
     }
     times["total"] = total;
     j["seconds"] = times;
-    j["power_balance"] = balance_json(result.stats.power);
+    j["power_balance"] = balance_json(result.stats.power, scene.sun.has_value());
     return j.dump(2) + "\n";
 }
 

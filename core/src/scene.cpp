@@ -1,5 +1,6 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
@@ -35,6 +36,12 @@ double PointLight::profile_solid_angle() const {
 
 RgbD PointLight::power() const { return RgbD(intensity) * profile_solid_angle(); }
 
+double Sun::angular_radius() const { return 0.5 * angular_diameter_deg * k_pi / 180.0; }
+
+Rgb Sun::unoccluded(const Vec3& n) const {
+    return irradiance * float(std::max(0.0, dot(n, direction)));
+}
+
 BBox Scene::bounds() const {
     BBox box;
     for (const Polygon& poly : polygons)
@@ -49,6 +56,8 @@ bool Scene::has_emitter() const {
     for (const PointLight& light : point_lights)
         if (!light.intensity.is_black())
             return true;
+    if (sun && !sun->irradiance.is_black())
+        return true;
     for (const Polygon& poly : polygons)
         if (!materials[poly.material].emission.is_black())
             return true;

@@ -239,6 +239,21 @@ void validate_spot(const Scene& scene, SpotCone& spot, const std::string& key) {
                       spot.beam_deg));
 }
 
+// The same ranges as the scene file's "sun" (scene_json.cpp), for suns built in code; the
+// direction is normalised in place.
+void validate_sun(const Scene& scene, Sun& sun) {
+    check(is_finite(sun.direction) && length(sun.direction) > 0, scene, "sun.direction",
+          "must be a finite, non-zero vector (toward the sun), got " + format_vec(sun.direction));
+    sun.direction = normalize(sun.direction);
+    const Rgb& e = sun.irradiance;
+    check(e.is_finite() && e.r >= 0 && e.g >= 0 && e.b >= 0, scene, "sun",
+          "irradiance must be finite and >= 0, got " + format_rgb(e));
+    check(sun.angular_diameter_deg >= 0 && sun.angular_diameter_deg <= 10, scene,
+          "sun.angular_diameter_deg",
+          fmt::format("must be in [0, 10] degrees (the sun: 0.533), got {}",
+                      sun.angular_diameter_deg));
+}
+
 void validate_lights_and_sensors(Scene& scene) {
     for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
         PointLight& light = scene.point_lights[i];
@@ -250,6 +265,8 @@ void validate_lights_and_sensors(Scene& scene) {
         if (light.spot)
             validate_spot(scene, *light.spot, key + ".spot");
     }
+    if (scene.sun)
+        validate_sun(scene, *scene.sun);
     for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
         Sensor& sensor = scene.sensors[i];
         const std::string key = fmt::format("sensors[{}]", i);
@@ -357,7 +374,7 @@ void validate_scene(Scene& scene) {
     validate_settings(scene);
     resolve_emission_flux(scene);
     check(scene.has_emitter(), scene, "",
-          "scene has no emitter: give a material 'emission' or add 'point_lights'");
+          "scene has no emitter: give a material 'emission' or add 'point_lights' or a 'sun'");
 }
 
 } // namespace penumbra

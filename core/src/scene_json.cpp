@@ -278,6 +278,17 @@ SpotCone parse_spot(const Field& field) {
     return spot;
 }
 
+/// `color` of a light or the sun: non-negative with non-zero luminance; white if absent.
+Rgb parse_light_color(const Field& parent) {
+    if (!parent.has("color"))
+        return Rgb(1.0f);
+    const Field field = parent.child("color");
+    const Rgb color = field.rgb();
+    if (color.r < 0 || color.g < 0 || color.b < 0 || to_photometric(color) <= 0)
+        field.fail("expected a non-negative colour with non-zero luminance");
+    return color;
+}
+
 PointLight parse_point_light(const Field& field, double metres_per_unit) {
     field.expect_keys({"name", "position", "intensity_cd", "flux_lm", "color", "spot"});
     PointLight light;
@@ -294,15 +305,52 @@ PointLight parse_point_light(const Field& field, double metres_per_unit) {
         amount.fail(fmt::format("must be >= 0, got {}", value));
     // flux_lm is what leaves the light: 4π I for an isotropic light, the cone's for a spot.
     const double intensity_cd = by_intensity ? value : value / light.profile_solid_angle();
-    Rgb color(1.0f);
-    if (field.has("color")) {
-        const Field color_field = field.child("color");
-        color = color_field.rgb();
-        if (color.r < 0 || color.g < 0 || color.b < 0 || to_photometric(color) <= 0)
-            color_field.fail("expected a non-negative colour with non-zero luminance");
-    }
-    light.intensity = from_photometric(intensity_cd, color);
+    light.intensity = from_photometric(intensity_cd, parse_light_color(field));
     return light;
+}
+
+// "sun": {"direction": [x, y, z], "illuminance_lx": E or "irradiance_w_m2": E or [r, g, b],
+// "color": [r, g, b], "angular_diameter_deg": d}. The direction points toward the sun, is not
+// scaled by the units and is normalised; E is the direct normal irradiance (on a surface
+// facing the sun). `color` goes with `illuminance_lx` only: radiometric input carries its
+// colour in its channels.
+Sun parse_sun(const Field& field) {
+    field.expect_keys({"direction", "illuminance_lx", "irradiance_w_m2", "color",
+                       "angular_diameter_deg"});
+    Sun sun;
+    const Field direction = field.required("direction");
+    sun.direction = direction.vec3();
+    if (length(sun.direction) == 0)
+        direction.fail("expected a non-zero vector (toward the sun)");
+    sun.direction = normalize(sun.direction);
+    const bool photometric = field.has("illuminance_lx");
+    if (photometric == field.has("irradiance_w_m2"))
+        field.fail("give exactly one of 'illuminance_lx' and 'irradiance_w_m2'");
+    if (photometric) {
+        const Field amount = field.child("illuminance_lx");
+        const double lx = amount.number();
+        if (lx < 0)
+            amount.fail(fmt::format("must be >= 0, got {}", lx));
+        sun.irradiance = from_photometric(lx, parse_light_color(field));
+    } else {
+        if (field.has("color"))
+            field.child("color").fail(
+                "is only used with 'illuminance_lx' (give 'irradiance_w_m2' as [r, g, b])");
+        const Field amount = field.child("irradiance_w_m2");
+        sun.irradiance = amount.rgb();
+        const Rgb& e = sun.irradiance;
+        if (!e.is_finite() || e.r < 0 || e.g < 0 || e.b < 0)
+            amount.fail(fmt::format("must be finite and >= 0 per channel, got ({}, {}, {})", e.r,
+                                    e.g, e.b));
+    }
+    if (field.has("angular_diameter_deg")) {
+        const Field diameter = field.child("angular_diameter_deg");
+        sun.angular_diameter_deg = diameter.number();
+        if (!(sun.angular_diameter_deg >= 0 && sun.angular_diameter_deg <= 10))
+            diameter.fail(fmt::format("must be in [0, 10] degrees (the sun: 0.533), got {}",
+                                      sun.angular_diameter_deg));
+    }
+    return sun;
 }
 
 Vec3 sensor_normal(const Field& field, const Vec3& normal) {
@@ -484,7 +532,7 @@ void parse_surfaces(const Field& root, SceneSpec& spec) {
             .fail("the scene has no geometry: give 'geometry' files or inline 'polygons'");
 }
 
-/// point_lights, sensors, camera and image, mesher, solver.
+/// point_lights, sun, sensors, camera and image, mesher, solver.
 void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
     const double scale = spec.metres_per_unit;
     Scene& scene = spec.scene;
@@ -493,6 +541,8 @@ void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
         for (std::size_t i = 0; i < lights.array_size(); ++i)
             scene.point_lights.push_back(parse_point_light(lights.element(i), scale));
     }
+    if (root.has("sun"))
+        scene.sun = parse_sun(root.child("sun"));
     if (root.has("sensors"))
         parse_sensors(root.child("sensors"), scale, spec);
     if (root.has("camera"))
@@ -514,7 +564,7 @@ SceneSpec parse_scene_json(const std::string& text, const std::string& file_name
     const Json json = parse_json(text, file_name);
     const Field root(json, "", file_name);
     root.expect_keys({"name", "units", "up", "geometry", "polygons", "materials", "point_lights",
-                      "sensors", "camera", "image", "mesher", "solver"});
+                      "sun", "sensors", "camera", "image", "mesher", "solver"});
     SceneSpec spec;
     spec.scene.file = file_name;
     if (root.has("name"))

@@ -32,7 +32,7 @@ struct PolygonSpec {
 
 /// \brief Everything the scene file says, before its files are read.
 struct SceneSpec {
-    /// name, file, point_lights, inline sensors, camera, mesher and solver are final.
+    /// name, file, point_lights, sun, inline sensors, camera, mesher and solver are final.
     Scene scene;
     double metres_per_unit = 1.0;
     std::vector<std::string> geometry;      ///< as written, relative to the scene folder

@@ -2,7 +2,9 @@
 // vertex only if the faces sharing the edge all lie on one side of the wedge's plane (the edge
 // is a silhouette seen from the vertex); a blocker vertex generates an EV event with a source
 // edge only if its outline neighbours all lie on one side. Features that no sample line
-// reaches from the source feature unoccluded are skipped (lights in other rooms).
+// reaches from the source feature unoccluded are skipped (lights in other rooms). The sun's
+// features are directions (critical.h): its wedges are the same half-plane bounded regions,
+// with rays parallel to a direction where a finite source's rays leave a point.
 
 #include "critical.h"
 
@@ -13,6 +15,30 @@
 #include "core/parallel.h"
 
 namespace penumbra::mesher {
+
+namespace {
+
+Source sun_source(const Sun& sun) {
+    Source src;
+    src.id = -1;
+    src.at_infinity = true;
+    src.axis = sun.direction;
+    const double r = sun.angular_radius();
+    src.sin_radius = std::sin(r);
+    if (r == 0) {
+        src.vertices = {sun.direction};
+        return src;
+    }
+    const Frame frame = Frame::from_normal(sun.direction);
+    for (int k = 0; k < k_sun_rim_sides; ++k) {
+        const double phi = 2.0 * k_pi * k / k_sun_rim_sides;
+        src.vertices.push_back(frame.to_world(
+            Vec3(src.sin_radius * std::cos(phi), src.sin_radius * std::sin(phi), std::cos(r))));
+    }
+    return src;
+}
+
+} // namespace
 
 std::vector<Source> collect_sources(const Scene& scene, const std::vector<Surface>& surfaces) {
     std::vector<Source> out;
@@ -40,6 +66,8 @@ std::vector<Source> collect_sources(const Scene& scene, const std::vector<Surfac
         }
         out.push_back(std::move(src));
     }
+    if (scene.sun && !scene.sun->irradiance.is_black())
+        out.push_back(sun_source(*scene.sun));
     return out;
 }
 
@@ -106,9 +134,9 @@ bool vertex_edge_wedge(Event& ev, const Vec3& v, const Vec3& a, const Vec3& b, d
     return true;
 }
 
-// EV wedge through the source edge [a, b] and blocker vertex w; false if degenerate.
-bool edge_vertex_wedge(Event& ev, const Vec3& a, const Vec3& b, const Vec3& w, double reach) {
-    const Vec3 r1 = w - a, r2 = w - b;
+// EV wedge from blocker vertex w between the rays along r1 and r2 (away from the source edge:
+// w − a and w − b for a finite edge [a, b]); false if degenerate.
+bool edge_vertex_wedge(Event& ev, const Vec3& w, const Vec3& r1, const Vec3& r2, double reach) {
     const Vec3 n = cross(r1, r2);
     if (length(n) <= 1e-12 * dot(r1, r1) + 1e-300)
         return false;
@@ -189,6 +217,164 @@ bool clip_in_front(const Source& src, Vec3& a, Vec3& b, double eps) {
     return true;
 }
 
+// ---- The sun ----
+
+// The directions of the sun's rim whose planes with a line of direction \p e touch the disc's
+// cone (the disc's centre alone when it has no size); none if the line points into the disc.
+// A plane containing e with unit normal n touches the cone where n·s = sin r: n = c p1 ± √(1−c²)
+// p2 in the frame p1 = s⊥e / |s⊥e|, p2 = e × p1, with c = sin r / |s⊥e|; the disc point it
+// touches is s projected onto the plane.
+int sun_tangent_directions(const Source& sun, const Vec3& e, std::array<Vec3, 2>& out) {
+    const Vec3 u = normalize(e), &s = sun.axis;
+    const Vec3 s_perp = s - u * dot(s, u);
+    const double q = length(s_perp);
+    if (sun.sin_radius == 0) {
+        out[0] = s;
+        return q > 1e-9 ? 1 : 0;
+    }
+    if (q <= sun.sin_radius * (1.0 + 1e-9))
+        return 0;
+    const Vec3 p1 = s_perp / q, p2 = cross(u, p1);
+    const double c = sun.sin_radius / q, sn = std::sqrt(std::max(0.0, 1.0 - c * c));
+    for (int k = 0; k < 2; ++k) {
+        const Vec3 n = p1 * c + p2 * (k == 0 ? sn : -sn);
+        out[std::size_t(k)] = normalize(s - n * sun.sin_radius);
+    }
+    return 2;
+}
+
+// The sun's rim as seen for blocker vertex w, a polygon inscribed in it: the touching
+// directions of w's own edges (so that the chords end where the edges' VE planes touch the
+// disc), each arc between two of them split evenly into chords of at most 2π / k_sun_rim_sides
+// (the regular polygon if no edge has touching directions).
+std::vector<Vec3> sun_rim_at(const Source& sun, const FeatureVertex& vertex) {
+    const Frame frame = Frame::from_normal(sun.axis);
+    std::vector<std::pair<double, Vec3>> breaks;
+    for (const Vec3& nb : vertex.neighbours) {
+        std::array<Vec3, 2> touching;
+        const int count = length(nb - vertex.p) > 0
+                              ? sun_tangent_directions(sun, nb - vertex.p, touching)
+                              : 0;
+        for (int k = 0; k < count; ++k) {
+            const Vec3& d = touching[std::size_t(k)];
+            breaks.emplace_back(std::atan2(dot(d, frame.t), dot(d, frame.s)), d);
+        }
+    }
+    if (breaks.empty())
+        return sun.vertices;
+    std::stable_sort(breaks.begin(), breaks.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    const double cos_radius = std::sqrt(1.0 - sun.sin_radius * sun.sin_radius);
+    const double max_step = 2.0 * k_pi / k_sun_rim_sides;
+    std::vector<Vec3> rim;
+    for (std::size_t i = 0; i < breaks.size(); ++i) {
+        const double a0 = breaks[i].first;
+        const double a1 = i + 1 < breaks.size() ? breaks[i + 1].first : breaks[0].first + 2 * k_pi;
+        if (a1 - a0 <= 1e-12)
+            continue; // the same direction twice
+        rim.push_back(breaks[i].second);
+        const int parts = std::max(1, int(std::ceil((a1 - a0) / max_step - 1e-9)));
+        for (int p = 1; p < parts; ++p) {
+            const double phi = a0 + (a1 - a0) * p / parts;
+            rim.push_back(frame.to_world(Vec3(sun.sin_radius * std::cos(phi),
+                                              sun.sin_radius * std::sin(phi), cos_radius)));
+        }
+    }
+    return rim;
+}
+
+// Whether some of up to five points on [a, b] sees the sun along the unit direction d.
+bool sees_along(const SurfaceBvh& bvh, const Vec3& a, const Vec3& b, const Vec3& d,
+                double reach, const std::vector<std::uint32_t>& skip) {
+    for (double u : {0.5, 0.02, 0.98, 0.25, 0.75})
+        if (!bvh.occluded(a + (b - a) * u, d * reach, 1e-6, 1.0, skip))
+            return true;
+    return false;
+}
+
+// Whether w sees some of up to five directions of the chord [a, b] of the sun's rim.
+bool sees_chord(const SurfaceBvh& bvh, const Vec3& w, const Vec3& a, const Vec3& b,
+                double reach, const std::vector<std::uint32_t>& skip) {
+    for (double u : {0.5, 0.02, 0.98, 0.25, 0.75})
+        if (!bvh.occluded(w, normalize(a + (b - a) * u) * reach, 1e-6, 1.0, skip))
+            return true;
+    return false;
+}
+
+// The sun's VE wedge: the part of the plane through the edge [a, b] and the direction d
+// beyond the edge, between the lines through a and b parallel to d; false if degenerate.
+bool sun_vertex_edge_wedge(Event& ev, const Vec3& d, const Vec3& a, const Vec3& b,
+                           double reach) {
+    const Vec3 n = cross(b - a, d);
+    if (length(n) <= 1e-12 * length(b - a) + 1e-300)
+        return false;
+    ev.normal = normalize(n);
+    ev.apex = a;
+    ev.toward = d;
+    ev.near_a = a;
+    ev.near_b = b;
+    Vec3 m1 = cross(ev.normal, d), m2 = m1, m3 = cross(ev.normal, b - a);
+    if (dot(m1, b - a) < 0)
+        m1 = -m1;
+    if (dot(m2, a - b) < 0)
+        m2 = -m2;
+    if (dot(m3, d) > 0)
+        m3 = -m3;
+    ev.bounds = {{m1, a}, {m2, b}, {m3, a}};
+    for (const Vec3& p : {a, b, a - d * reach, b - d * reach})
+        ev.box.extend(p);
+    return true;
+}
+
+void sun_vertex_edge_events(const Source& src, std::uint32_t si, const FeatureEdge& edge,
+                            std::uint32_t ei, const SurfaceBvh& bvh, const MeshParams& params,
+                            std::vector<Event>& out) {
+    const Vec3 &a = edge.a, &b = edge.b;
+    const double reach = 2 * params.diagonal;
+    std::array<Vec3, 2> touching;
+    const int count = sun_tangent_directions(src, b - a, touching);
+    for (int k = 0; k < count; ++k) {
+        const Vec3& d = touching[std::size_t(k)];
+        const Vec3 m = cross(b - a, d);
+        if (!one_side(m, a, edge.wings, 1e-9 * length(m) * params.diagonal) ||
+            !sees_along(bvh, a, b, d, reach, edge.surfaces))
+            continue;
+        Event ev;
+        ev.kind = EventKind::vertex_edge;
+        ev.source = si;
+        ev.feature = ei;
+        ev.source_k = std::uint32_t(k);
+        ev.order = src.sin_radius > 0 ? 2 : 0; // a disc's visible part grows as t^3/2
+        if (sun_vertex_edge_wedge(ev, d, a, b, reach))
+            out.push_back(std::move(ev));
+    }
+}
+
+void sun_edge_vertex_events(const Source& src, std::uint32_t si, const FeatureVertex& vertex,
+                            std::uint32_t vi, const SurfaceBvh& bvh, const MeshParams& params,
+                            std::vector<Event>& out) {
+    if (src.sin_radius == 0)
+        return; // parallel light: a point of the sky has no edges
+    const Vec3& w = vertex.p;
+    const double reach = 2 * params.diagonal;
+    const std::vector<Vec3> rim = sun_rim_at(src, vertex);
+    for (std::size_t k = 0; k < rim.size(); ++k) {
+        const Vec3 &a = rim[k], &b = rim[(k + 1) % rim.size()];
+        const Vec3 m = cross(a, b);
+        if (!one_side(m, w, vertex.neighbours, 1e-9 * length(m) * params.diagonal) ||
+            !sees_chord(bvh, w, a, b, reach, vertex.surfaces))
+            continue;
+        Event ev;
+        ev.kind = EventKind::edge_vertex;
+        ev.source = si;
+        ev.feature = vi;
+        ev.source_k = std::uint32_t(k);
+        ev.order = 2;
+        if (edge_vertex_wedge(ev, w, -a, -b, reach))
+            out.push_back(std::move(ev));
+    }
+}
+
 // The VE events of the part [a, b] of blocker edge ei with each source vertex.
 void vertex_edge_part_events(const Source& src, std::uint32_t si, const FeatureEdge& edge,
                              std::uint32_t ei, const Vec3& a, const Vec3& b,
@@ -220,6 +406,8 @@ void vertex_edge_events(const Source& src, std::uint32_t si, const Features& fea
                         std::uint32_t ei, const SurfaceBvh& bvh, const MeshParams& params,
                         std::vector<Event>& out) {
     const FeatureEdge& edge = features.edges[ei];
+    if (src.at_infinity)
+        return sun_vertex_edge_events(src, si, edge, ei, bvh, params, out);
     if (src.surface >= 0 && std::find(edge.surfaces.begin(), edge.surfaces.end(),
                                       std::uint32_t(src.surface)) != edge.surfaces.end())
         return;
@@ -236,6 +424,8 @@ void edge_vertex_events(const Source& src, std::uint32_t si, const Features& fea
                         std::uint32_t vi, const SurfaceBvh& bvh, const MeshParams& params,
                         std::vector<Event>& out) {
     const FeatureVertex& vertex = features.vertices[vi];
+    if (src.at_infinity)
+        return sun_edge_vertex_events(src, si, vertex, vi, bvh, params, out);
     const Vec3& w = vertex.p;
     if (src.surface < 0 || !src.in_front(w, params.snap))
         return;
@@ -257,7 +447,7 @@ void edge_vertex_events(const Source& src, std::uint32_t si, const Features& fea
         for (const Vec3& nb : vertex.neighbours)
             if (length(nb - w) > 0 && parallel(nb - w, b - a))
                 ev.order = 1;
-        if (edge_vertex_wedge(ev, a, b, w, 2 * params.diagonal))
+        if (edge_vertex_wedge(ev, w, w - a, w - b, 2 * params.diagonal))
             out.push_back(std::move(ev));
     }
 }

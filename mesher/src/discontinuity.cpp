@@ -2,13 +2,15 @@
 // each critical wedge (critical.h) is intersected with the planes of the surfaces it reaches
 // and clipped to their outlines; a piece is a real boundary where the critical line from the
 // receiver point through the blocker feature to the source feature is not blocked by other
-// geometry. Deviations: edge-edge-edge events are ignored, and visibility along a piece is
+// geometry (for the sun: the ray from the point along the critical direction leaves the
+// scene). Deviations: edge-edge-edge events are ignored, and visibility along a piece is
 // sampled (at a quarter of the element size, transitions bisected to the snap distance), so a
 // blocker narrower than the sample spacing can leave a short hidden piece in place.
 
 #include "discontinuity.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -87,6 +89,9 @@ public:
         : ev_(ev), src_(src), bvh_(bvh), skip_(std::move(skip)), params_(params) {}
 
     bool open(const Vec3& x) const {
+        if (src_.at_infinity) // through the blocker vertex, or along the touching direction
+            return open_toward(x, ev_.kind == EventKind::edge_vertex ? normalize(ev_.apex - x)
+                                                                     : ev_.toward);
         Vec3 target = ev_.apex;
         if (ev_.kind == EventKind::edge_vertex && !through_vertex(x, target))
             return false;
@@ -96,6 +101,13 @@ public:
     }
 
 private:
+    // The sun: the ray from x along the unit direction d leaves the scene.
+    bool open_toward(const Vec3& x, const Vec3& d) const {
+        const double reach = 2 * params_.diagonal;
+        const double margin = std::max(1e-9, 10 * params_.snap / reach);
+        return !bvh_.occluded(x, d * reach, margin, 1.0, skip_);
+    }
+
     // The point of the source edge on the line from x through the blocker vertex.
     bool through_vertex(const Vec3& x, Vec3& target) const {
         const std::size_t n = src_.vertices.size();
@@ -157,7 +169,14 @@ const std::vector<std::uint32_t>& blocker_surfaces(const Event& ev, const Featur
                                              : f.vertices[ev.feature].surfaces;
 }
 
-bool any_in_front(const Source& src, const Surface& r, double eps) {
+// Whether the source can light r: some of r is in front of a polygon source; some side of r
+// faces the sun (a surface edge-on to it, or a one-sided one facing away, has the sun below
+// its horizon and receives nothing).
+bool receives(const Source& src, const Surface& r, double eps) {
+    if (src.at_infinity) {
+        const double c = dot(r.normal, src.axis);
+        return r.two_sided ? std::abs(c) > 1e-9 : c > 1e-9;
+    }
     return std::any_of(r.outline.begin(), r.outline.end(),
                        [&](const Vec3& v) { return src.in_front(v, eps); });
 }
@@ -173,7 +192,7 @@ std::vector<Piece> event_pieces(const Event& ev, const std::vector<Source>& sour
     for (std::uint32_t ri : bvh.overlapping(ev.box)) {
         const Surface& r = surfaces[ri];
         if (std::find(skip.begin(), skip.end(), ri) != skip.end() ||
-            !any_in_front(src, r, params.snap))
+            !receives(src, r, params.snap))
             continue;
         const bool contact = ev.kind == EventKind::vertex_edge &&
                              std::abs(r.distance(ev.near_a)) <= params.contact_tol &&
@@ -195,6 +214,146 @@ std::vector<Piece> event_pieces(const Event& ev, const std::vector<Source>& sour
         }
     }
     return out;
+}
+
+// The crossing of the lines of s and t, if they are not parallel.
+bool line_crossing(const Segment2& s, const Segment2& t, Vec2& x) {
+    const Vec2 r = s.b - s.a, q = t.b - t.a;
+    const double den = cross(r, q);
+    if (std::abs(den) <= 1e-9 * length(r) * length(q))
+        return false;
+    x = s.a + r * (cross(t.a - s.a, q) / den);
+    return true;
+}
+
+// Where the end v of the sun's segment t (w its other end) goes when it lies within merge of
+// the interiors of the segments \p near: the crossing of two of them if one is within
+// 2 merge, so that it stays on both; else onto the nearest one it is off: the point on t's
+// line if within 4 merge, so that t keeps its line, else the nearest point. False: stays.
+bool fitted_end(const Vec2& v, const Vec2& w, const std::vector<Segment2>& near, double merge,
+                Vec2& target) {
+    double best = 2 * merge;
+    for (std::size_t p = 0; p < near.size(); ++p)
+        for (std::size_t q = p + 1; q < near.size(); ++q) {
+            Vec2 x;
+            if (line_crossing(near[p], near[q], x) && length(x - v) < best) {
+                best = length(x - v);
+                target = x;
+            }
+        }
+    if (best < 2 * merge)
+        return best > 1e-9 * merge;
+    const Segment2* nearest = nullptr;
+    double nearest_d = merge;
+    for (const Segment2& s : near) {
+        const double d = distance_to_segment(v, s.a, s.b);
+        if (d > 1e-9 * merge && d <= nearest_d) {
+            nearest = &s;
+            nearest_d = d;
+        }
+    }
+    if (!nearest)
+        return false;
+    const Segment2& s = *nearest;
+    Vec2 x;
+    if (line_crossing({w, v}, s, x) && dot(x - w, v - w) > 0 && length(x - v) <= 4 * merge &&
+        distance_to_segment(x, s.a, s.b) <= 1e-9 * merge + 1e-12 * length(s.b - s.a)) {
+        target = x;
+        return true;
+    }
+    const Vec2 q = s.b - s.a;
+    target = s.a + q * std::clamp(dot(v - s.a, q) / dot(q, q), 0.0, 1.0);
+    return true;
+}
+
+// Two ends v of t and p of s closer than merge (but apart), of segments longer than 2 merge:
+// both move to the crossing of the two lines if it is within 2 merge of each, rather than
+// the noding merging one into the other.
+bool join_ends(Segment2& t, bool t_at_b, Segment2& s, bool s_at_b, double merge) {
+    Vec2& v = t_at_b ? t.b : t.a;
+    Vec2& p = s_at_b ? s.b : s.a;
+    Vec2 x;
+    if ((v.x == p.x && v.y == p.y) || length(v - p) > merge || t.length() <= 2 * merge ||
+        s.length() <= 2 * merge || !line_crossing(t, s, x) || length(x - v) > 2 * merge ||
+        length(x - p) > 2 * merge)
+        return false;
+    v = x;
+    p = x;
+    return true;
+}
+
+// The sun's boundaries are finer than the constraint merge distance (a penumbra is about 9 mm
+// wide per metre from the blocker): a VE line overshoots its crossing with another edge's by
+// less than that, a rim chord starts beside the line it touches, two edges' lines end less
+// than that apart at a corner. The noding would bend one line through the other's end
+// (node_segments splits a segment at every vertex within merge of it, and merges such
+// points), moving a whole shadow boundary. Such ends move instead onto the lines they are
+// near (fitted_end) or to the crossing of the two lines (join_ends), so that every line stays
+// where it is; pieces left shorter than 4 snap, or lying on another of the sun's segments,
+// are dropped.
+void fit_sun_ends(std::vector<ReceiverSegment>& segs, const MeshParams& params) {
+    std::vector<std::size_t> sun;
+    for (std::size_t i = 0; i < segs.size(); ++i)
+        if (segs[i].source == -1)
+            sun.push_back(i);
+    const double m = params.merge;
+    for (int pass = 0; pass < 3; ++pass) {
+        bool changed = false;
+        std::vector<std::array<double, 4>> boxes; // x and y ranges, widened by merge
+        for (std::size_t j : sun) {
+            const Segment2& s = segs[j].segment;
+            boxes.push_back({std::min(s.a.x, s.b.x) - m, std::max(s.a.x, s.b.x) + m,
+                             std::min(s.a.y, s.b.y) - m, std::max(s.a.y, s.b.y) + m});
+        }
+        for (std::size_t i : sun)
+            for (const bool at_b : {false, true}) {
+                Segment2& t = segs[i].segment;
+                Vec2& v = at_b ? t.b : t.a;
+                std::vector<Segment2> near;
+                for (std::size_t k = 0; k < sun.size(); ++k) {
+                    const Segment2& s = segs[sun[k]].segment;
+                    const auto& box = boxes[k];
+                    if (sun[k] != i && v.x >= box[0] && v.x <= box[1] && v.y >= box[2] &&
+                        v.y <= box[3] && distance_to_segment(v, s.a, s.b) <= m &&
+                        length(v - s.a) > m && length(v - s.b) > m)
+                        near.push_back(s);
+                }
+                Vec2 target;
+                if (!near.empty() && fitted_end(v, at_b ? t.a : t.b, near, m, target)) {
+                    v = target;
+                    changed = true;
+                }
+                for (std::size_t k = 0; k < sun.size(); ++k) {
+                    const auto& box = boxes[k];
+                    if (sun[k] == i || v.x < box[0] || v.x > box[1] || v.y < box[2] ||
+                        v.y > box[3])
+                        continue;
+                    for (const bool s_at_b : {false, true})
+                        changed = join_ends(t, at_b, segs[sun[k]].segment, s_at_b, m) || changed;
+                }
+            }
+        if (!changed)
+            break;
+    }
+    std::vector<bool> drop(segs.size(), false);
+    for (std::size_t i : sun) {
+        const Segment2& t = segs[i].segment;
+        drop[i] = t.length() <= 4 * params.snap;
+        for (std::size_t j : sun) {
+            const Segment2& s = segs[j].segment;
+            if (drop[i] || j == i || drop[j] ||
+                std::max(t.a.x, t.b.x) < std::min(s.a.x, s.b.x) - m ||
+                std::min(t.a.x, t.b.x) > std::max(s.a.x, s.b.x) + m)
+                continue;
+            drop[i] = distance_to_segment(t.a, s.a, s.b) <= 1e-9 * m &&
+                      distance_to_segment(t.b, s.a, s.b) <= 1e-9 * m;
+        }
+    }
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < segs.size(); ++i)
+        if (!drop[i])
+            segs[kept++] = segs[i];
+    segs.resize(kept);
 }
 
 } // namespace
@@ -230,10 +389,14 @@ std::vector<std::vector<ReceiverSegment>> find_discontinuities(const Scene& scen
         for (const Piece& p : pieces[i])
             if (p.order <= params.max_order)
                 groups[p.receiver][{sources[events[i].source].id, p.order}].push_back(p.segment);
-    for (std::size_t s = 0; s < surfaces.size(); ++s)
-        for (const auto& [key, segments] : groups[s])
-            for (const Segment2& m : merge_collinear(segments, params.snap))
-                out[s].push_back({m, key.second, key.first});
+    run_in_arena(ctx, [&] {
+        parallel_for_index(surfaces.size(), 16, [&](std::size_t s) {
+            for (const auto& [key, segments] : groups[s])
+                for (const Segment2& m : merge_collinear(segments, params.snap))
+                    out[s].push_back({m, key.second, key.first});
+            fit_sun_ends(out[s], params);
+        });
+    });
     ctx.debug("mesh: {} sources, {} critical events", sources.size(), events.size());
     return out;
 }

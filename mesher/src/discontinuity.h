@@ -25,7 +25,9 @@ struct ReceiverSegment {
 ///        the source feature is blocked by other geometry are not real boundaries and are
 ///        dropped (sampled along the segment, transitions found by bisection). Only orders up
 ///        to params.max_order are kept; collinear overlapping segments of one source and order
-///        are merged.
+///        are merged. The sun's boundaries (D2 but at contacts) are finer than the merge
+///        distance: ends of its segments near another of them are moved onto it (see
+///        fit_sun_ends in the .cpp).
 std::vector<std::vector<ReceiverSegment>> find_discontinuities(const Scene& scene,
                                                                const std::vector<Surface>& surfaces,
                                                                const SurfaceBvh& bvh,

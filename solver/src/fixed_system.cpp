@@ -11,6 +11,7 @@
 #include "core/parallel.h"
 #include "point_lights.h"
 #include "shooting_state.h"
+#include "sun_light.h"
 
 namespace penumbra::solver {
 
@@ -51,9 +52,11 @@ FixedSystem build_fixed_system(const Scene& scene, const RadiosityMesh& mesh,
     s.emission = lights.emission;
     s.reflectance = lights.reflectance;
     shoot_point_lights(lights, geo, scene.point_lights, visibility, settings, ctx);
-    s.light_direct = lights.h_direct;
     for (const PointLight& l : scene.point_lights)
         s.light_emitted += l.power();
+    if (scene.sun) // the sun's power is what its direct light delivers
+        s.light_emitted += shoot_sun(lights, geo, *scene.sun, visibility, settings, ctx);
+    s.light_direct = lights.h_direct;
     s.light_escaped = lights.escaped;
     std::vector<Row> rows(n);
     s.escape.assign(n, 0.0);

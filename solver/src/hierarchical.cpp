@@ -90,10 +90,10 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     rs.rows.visibility_rays = scene.solver.visibility_rays;
     rs.rows.seed = ctx.seed;
     rs.offset = 1e-5 * std::max(mesh.scene_diagonal, 1e-3);
-    const double emitted = emitted_power_max(h, scene.point_lights);
+    double emitted = emitted_power_max(h, scene.point_lights); // and the sun's, once linked
     rs.min_area = scene.solver.min_area > 0 ? scene.solver.min_area
                                             : std::pow(mesh.scene_diagonal / 200.0, 2);
-    LinkSet links(h, twin, visibility, scene.point_lights, rs);
+    LinkSet links(h, twin, visibility, scene.point_lights, scene.sun ? &*scene.sun : nullptr, rs);
     NodeValues v;
     v.b = reuse ? reuse->radiosity : h.emission;
     v.b_range.assign(h.size(), 0.0f);
@@ -120,6 +120,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
         links.link_roots();
     }
     links.set_threshold(scene.solver.epsilon * radiosity_scale(h, links));
+    emitted += links.sun_power().max_component(); // what the sun's direct light delivers
     if (clusters.enabled)
         links.set_cluster_threshold(scene.solver.epsilon * emitted / clusters.tree.area[0]);
     SweepLog log{mesh, observer, stats};
@@ -146,7 +147,10 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
         ctx.info("hierarchical: cycle {}: {} nodes, {} links, {} {}, change {:.2e}", cycle,
                  h.size(), links.link_count(), s.sweeps,
                  iteration == Iteration::shooting ? "shots" : "sweeps", s.relative);
-        progress.update(double(cycle + 1) / k_max_cycles);
+        // The number of cycles is not known ahead (refinement stops when the radiosities stop
+        // asking for it, usually after 3–6): half the bar for the first, which links and
+        // refines the most, and half of what is left for each one after it.
+        progress.update(1.0 - std::pow(0.5, cycle + 1));
         if (!changed && cycle > 0)
             break;
     }
@@ -175,7 +179,8 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
         stats->power = hierarchical_balance(scene, leaf.mesh, geo, result.solution, visibility,
                                             row_settings, stats->residual_history.empty()
                                                               ? 0.0
-                                                              : stats->residual_history.back());
+                                                              : stats->residual_history.back(),
+                                            links.sun_power());
     }
     if (observer && observer->on_pass)
         observer->on_pass(root_snapshot(mesh, h, v), log.total, 0.0, true);

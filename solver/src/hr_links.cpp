@@ -11,6 +11,7 @@
 #include "core/rng.h"
 #include "form_factor.h"
 #include "point_lights.h"
+#include "sun_light.h"
 
 namespace penumbra::solver {
 
@@ -35,8 +36,9 @@ constexpr int k_twin_child[4] = {0, 2, 1, 3};
 } // namespace
 
 LinkSet::LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, const VisibilityQuery& visibility,
-                 const std::vector<PointLight>& lights, RefineSettings settings)
-    : h_(h), twin_(twin), visibility_(visibility), lights_(lights), settings_(settings) {}
+                 const std::vector<PointLight>& lights, const Sun* sun, RefineSettings settings)
+    : h_(h), twin_(twin), visibility_(visibility), lights_(lights), sun_(sun),
+      settings_(settings) {}
 
 Link LinkSet::make_link(std::uint32_t q, std::uint32_t p) const {
     const OrientedTriangle a = oriented(h_, q), b = oriented(h_, p);
@@ -47,6 +49,8 @@ Link LinkSet::make_link(std::uint32_t q, std::uint32_t p) const {
 }
 
 LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
+    if (l == lights_.size())
+        return make_sun_link(q);
     const PointLight& light = lights_[l];
     const Vec3 pos = light.position;
     LightLink link{q, l, Rgb{}, 0, 0};
@@ -77,6 +81,25 @@ LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
     link.partial = (open > 0 && open < rays) || hard_edge;
     link.irradiance = light.intensity * float(omega * v / h_.area[q]);
     return link;
+}
+
+// The sun's link: irradiance · cos θ · V, uniform over a planar receiver but for V, so its
+// spread is 0 and the "variation" oracle refines it only where it is partly occluded (a
+// penumbra or shadow boundary, down to min_area, as a point light's shadow); "bf" weighs its
+// irradiance as a point light's.
+LightLink LinkSet::make_sun_link(std::uint32_t q) const {
+    const SunIrradiance s = sun_triangle_irradiance(*sun_, oriented(h_, q), settings_.offset,
+                                                    h_.diagonal, q, 1, visibility_,
+                                                    settings_.rows);
+    return {q, std::uint32_t(lights_.size()), s.irradiance, 0, std::uint8_t(s.partial ? 1 : 0)};
+}
+
+RgbD LinkSet::sun_power() const {
+    RgbD sum;
+    for (const LightLink& l : light_links_)
+        if (l.light == lights_.size())
+            sum += RgbD(l.irradiance) * h_.area[l.receiver];
+    return sum;
 }
 
 bool LinkSet::linkable(std::uint32_t q, std::uint32_t p) const {
@@ -113,7 +136,7 @@ void LinkSet::restore(std::vector<Link> links, std::vector<ClusterLink> cluster_
 void LinkSet::link_lights() {
     const std::size_t r = h_.root_count;
     light_links_.clear();
-    for (std::uint32_t l = 0; l < lights_.size(); ++l) {
+    for (std::uint32_t l = 0; l < lights_.size() + (sun_ ? 1 : 0); ++l) { // the sun last
         std::vector<LightLink> made(r);
         parallel_for_index(r, 64, [&](std::size_t q) { made[q] = make_light_link(std::uint32_t(q), l); });
         for (const LightLink& link : made)

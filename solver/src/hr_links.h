@@ -23,8 +23,10 @@ struct Link {
 };
 
 struct LightLink {
+    /// light: index into the point lights, or their count for the sun.
     std::uint32_t receiver = 0, light = 0;
-    /// I Ω V / A of the receiver, W/m² (Ω weighted by a spot's profile)
+    /// I Ω V / A of the receiver, W/m² (Ω weighted by a spot's profile); the sun's
+    /// irradiance · cos θ · V
     Rgb irradiance;
     /// Variation of I·profile·cos θ / d² over the receiver (largest channel), W/m²
     float spread = 0;
@@ -63,8 +65,9 @@ struct RefineSettings {
 
 class LinkSet {
 public:
+    /// \p sun (may be null) must outlive the link set.
     LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, const VisibilityQuery& visibility,
-            const std::vector<PointLight>& lights, RefineSettings settings);
+            const std::vector<PointLight>& lights, const Sun* sun, RefineSettings settings);
 
     /// Links between all pairs of roots that face each other, and from every light to every
     /// root it can see.
@@ -92,6 +95,9 @@ public:
 
     const std::vector<Link>& links() const { return links_; }
     const std::vector<LightLink>& light_links() const { return light_links_; }
+    /// What the sun's links deliver, Σ irradiance × receiver area (W per channel): the
+    /// sun's power in the balance.
+    RgbD sun_power() const;
     const std::vector<ClusterLink>& cluster_links() const { return cluster_links_; }
     /// CSR offsets of cluster_links() with an element receiver, by element node, and with a
     /// cluster receiver, by cluster (cluster links are kept sorted by receiver).
@@ -106,6 +112,7 @@ public:
 private:
     Link make_link(std::uint32_t receiver, std::uint32_t source) const;
     LightLink make_light_link(std::uint32_t receiver, std::uint32_t light) const;
+    LightLink make_sun_link(std::uint32_t receiver) const;
     void subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<float>& b_range);
     bool refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     bool refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
@@ -132,6 +139,7 @@ private:
     std::vector<std::int32_t>& twin_;
     const VisibilityQuery& visibility_;
     const std::vector<PointLight>& lights_;
+    const Sun* sun_ = nullptr; ///< light index lights_.size() in light links
     RefineSettings settings_;
     std::vector<Link> links_;
     std::vector<LightLink> light_links_;

@@ -1,5 +1,6 @@
 // Point gathering: E(x) = Σ_s B_s F(x → s) V(x, s) over source triangles s, plus
-// I profile cos θ / d² V for point lights. Unoccluded values are exact (analytic F).
+// I profile cos θ / d² V for point lights and E_n cos θ V for the sun. Unoccluded values are
+// exact (analytic F).
 
 #include "point_gather.h"
 
@@ -7,6 +8,7 @@
 
 #include "core/rng.h"
 #include "form_factor.h"
+#include "sun_light.h"
 
 namespace penumbra::solver {
 
@@ -85,6 +87,18 @@ Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
         visibility.occluded({&seg, 1}, {&blocked, 1});
         if (!blocked)
             sum += RgbD(light.intensity) * (profile * cos_theta / dist2);
+    }
+    if (sources.sun && !sources.sun->irradiance.is_black()) {
+        const Sun& sun = *sources.sun;
+        const double cos_theta = dot(p.normal, sun.direction);
+        if (cos_theta > 0) {
+            Pcg32 sun_rng = Pcg32::for_stream(RngPurpose::sun_visibility, p.id, 2,
+                                              std::uint64_t(p.purpose), seed);
+            const double v = sun_point_visibility(sun, p.position + p.normal * geo.offset,
+                                                  geo.diagonal, rays_per_source, visibility,
+                                                  sun_rng);
+            sum += RgbD(sun.irradiance) * (cos_theta * v);
+        }
     }
     return Rgb(float(sum.r), float(sum.g), float(sum.b));
 }

@@ -3,6 +3,7 @@
 // from each source or reflecting element, times visibility from rays.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/rng.h"
@@ -12,12 +13,13 @@
 
 namespace penumbra::solver {
 
-/// What a point can gather from: emitting elements and point lights (direct), reflecting
-/// elements (indirect).
+/// What a point can gather from: emitting elements, point lights and the sun (direct),
+/// reflecting elements (indirect).
 struct GatherSources {
     std::vector<std::uint32_t> emitters; ///< elements with non-zero emission
     std::vector<Rgb> emission;           ///< per element, πL (W/m²)
     std::vector<PointLight> lights;
+    std::optional<Sun> sun;
 };
 
 struct GatherPoint {
@@ -27,7 +29,9 @@ struct GatherPoint {
     RngPurpose purpose = RngPurpose::vertex_visibility;
 };
 
-/// \brief Direct irradiance (W/m²) at \p p from the sources.
+/// \brief Direct irradiance (W/m²) at \p p from the sources. The sun's share,
+///        irradiance · cos θ · V, takes V from sun_point_visibility with rays from the stream
+///        (sun_visibility, p.id, 2, p.purpose, seed).
 Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
                   const VisibilityQuery& visibility, const GatherPoint& p, int rays_per_source,
                   std::uint64_t seed);

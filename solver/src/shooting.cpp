@@ -15,6 +15,7 @@
 #include "element_rows.h"
 #include "point_lights.h"
 #include "shooting_state.h"
+#include "sun_light.h"
 #include "vertex_values.h"
 
 namespace penumbra::solver {
@@ -210,6 +211,8 @@ Solution solve_shooting(const Scene& scene, const RadiosityMesh& mesh,
         row_settings.visibility_rays = scene.solver.visibility_rays;
         row_settings.seed = ctx.seed;
         shoot_point_lights(state, geo, scene.point_lights, visibility, row_settings, ctx);
+        if (scene.sun)
+            shoot_sun(state, geo, *scene.sun, visibility, row_settings, ctx);
         LoopResult loop = shooting_loop(state, mesh, geo, visibility, scene.solver, row_settings,
                                         observer, ctx);
         PowerBalance balance = balance_of(state, geo);

@@ -39,7 +39,7 @@ SolveResult solve_fixed(const Scene& scene, const RadiosityMesh& mesh,
 PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
                                   const ElementGeometry& geo, const Solution& solution,
                                   const VisibilityQuery& visibility, const RowSettings& rows,
-                                  double unconverged_fraction) {
+                                  double unconverged_fraction, const RgbD& sun_delivered) {
     PowerBalance pb;
     RowSettings escape_rows = rows;
     escape_rows.escape_rays = 16; // many leaves: their sum averages the noise out
@@ -62,6 +62,7 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
         pb.emitted += power;
         pb.escaped += power * light_escape_fraction(geo, visibility, light, l, rows.seed);
     }
+    pb.emitted += sun_delivered; // the sun's power is what its direct light delivers
     pb.residual = pb.emitted * unconverged_fraction;
     return pb;
 }

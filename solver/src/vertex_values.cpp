@@ -11,6 +11,7 @@ GatherSources direct_sources(const Scene& scene, const std::vector<Rgb>& element
         if (!element_emission[e].is_black())
             sources.emitters.push_back(std::uint32_t(e));
     sources.lights = scene.point_lights;
+    sources.sun = scene.sun;
     return sources;
 }
 

@@ -14,7 +14,8 @@ struct ElementResult {
     std::vector<Rgb> radiosity, h_direct, h_indirect;
 };
 
-/// The sources a point can gather direct light from: emitting elements and point lights.
+/// The sources a point can gather direct light from: emitting elements, point lights and
+/// the sun.
 GatherSources direct_sources(const Scene& scene, const std::vector<Rgb>& element_emission);
 
 /// \brief A cheap snapshot for progress: element values, and vertex values as area-weighted

@@ -131,6 +131,41 @@ TEST_F(CliBadInput, BadSpot) {
     }
 }
 
+// Each bad sun: exit code 2 (a bad scene), one line naming the file and the key.
+TEST_F(CliBadInput, BadSun) {
+    struct Case {
+        const char* sun;
+        const char* key;
+        const char* what;
+    };
+    const Case cases[] = {
+        {R"({"direction": [0, 0, 0], "illuminance_lx": 1e5})", "sun.direction", "non-zero"},
+        {R"({"direction": [0, "NaN", 1], "illuminance_lx": 1e5})", "sun.direction",
+         "expected 3 numbers"},
+        {R"({"direction": [0, 0, 1], "illuminance_lx": -1})", "sun.illuminance_lx", ">= 0"},
+        {R"({"direction": [0, 0, 1], "irradiance_w_m2": [1, 1, -2]})", "sun.irradiance_w_m2",
+         ">= 0"},
+        {R"({"direction": [0, 0, 1], "illuminance_lx": 1e5, "angular_diameter_deg": -0.5})",
+         "sun.angular_diameter_deg", "[0, 10]"},
+        {R"({"direction": [0, 0, 1], "illuminance_lx": 1e5, "azimuth": 3})", "sun.azimuth",
+         "unknown key"},
+    };
+    int i = 0;
+    for (const Case& c : cases) {
+        const fs::path scene = dir_ / ("sun" + std::to_string(i++) + ".json");
+        write(scene, good_scene(std::string(",\n  \"sun\": ") + c.sun));
+        const fs::path out = dir_ / "out";
+        RunResult r = run_cli("bake " + scene.string() + " -o " + out.string() + " -q");
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        EXPECT_EQ(r.err.rfind("penumbra: error: ", 0), 0u) << r.err;
+        for (const std::string& m :
+             {scene.filename().string(), std::string("'") + c.key + "'", std::string(c.what)})
+            EXPECT_NE(r.err.find(m), std::string::npos) << "missing '" << m << "' in: " << r.err;
+        EXPECT_FALSE(fs::exists(out)) << "output left behind";
+    }
+}
+
 TEST_F(CliBadInput, UnwritableOutputFolder) {
     write(dir_ / "ok.json", good_scene());
     write(dir_ / "a_file", "x");
@@ -181,6 +216,15 @@ TEST(Cli, BakeWritesEveryOutput) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(fs::exists(dir / "again" / "mesh.vtu"));
     EXPECT_FALSE(fs::exists(dir / "again" / "solver_state.bin"));
+    // Progressive shooting on the hierarchy, with a series: snapshots while it shoots.
+    r = run_cli("bake " + (dir / "ok.json").string() + " -o " + (dir / "shots").string() +
+                " --iteration shooting --series 4 --epsilon 1e-2 --no-render -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::size_t steps = 0;
+    for (const auto& entry : fs::directory_iterator(dir / "shots" / "series"))
+        steps += entry.path().extension() == ".vtu";
+    EXPECT_GE(steps, 3u);
+    EXPECT_TRUE(fs::exists(dir / "shots" / "series.pvd"));
     fs::remove_all(dir);
 }
 

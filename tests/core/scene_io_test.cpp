@@ -69,6 +69,22 @@ const Material& material_named(const Scene& scene, const std::string& name) {
     throw std::runtime_error("no material " + name);
 }
 
+// Loading \p path throws one InputError line that names every one of \p parts and \p file.
+void expect_one_line_error(const std::string& path, std::vector<std::string> parts,
+                           const std::string& file) {
+    parts.push_back(file);
+    try {
+        load_scene(path);
+        ADD_FAILURE() << "no InputError for " << path;
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        for (const std::string& part : parts)
+            EXPECT_NE(message.find(part), std::string::npos)
+                << "'" << part << "' missing from: " << message;
+    }
+}
+
 TEST(SceneIo, LoadsCornellBox) {
     const Scene scene = load_scene(test::source_path("data/cornell/scene.json"));
     EXPECT_EQ(scene.name, "cornell-box");
@@ -231,18 +247,7 @@ TEST(SceneIo, BadSpotsNameTheKey) {
         write_file(dir, name,
                    lamp_scene(std::string(R"json(, "point_lights": [{"position": [0, 0, 2],
                    "intensity_cd": 100, "spot": )json") + c.spot + "}]"));
-        std::vector<std::string> parts(c.parts);
-        parts.push_back(name);
-        try {
-            load_scene(dir + "/" + name);
-            ADD_FAILURE() << "no InputError for " << c.spot;
-        } catch (const InputError& e) {
-            const std::string message = e.what();
-            EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-            for (const std::string& part : parts)
-                EXPECT_NE(message.find(part), std::string::npos)
-                    << "'" << part << "' missing from: " << message;
-        }
+        expect_one_line_error(dir + "/" + name, c.parts, name);
     }
 }
 
@@ -269,6 +274,110 @@ TEST(SceneIo, ValidateChecksSpotsBuiltInCode) {
     Scene inverted = scene;
     inverted.point_lights[0].spot->beam_deg = 25;
     expect_input_error([&] { validate_scene(inverted); }, {"'point_lights[0].spot.beam_deg'"});
+}
+
+// ---- The sun: direction toward it, direct normal illuminance or irradiance, disc size ----
+
+TEST(SceneIo, Sun) {
+    const std::string dir = test::temp_dir("scene-sun");
+    // A scene lit by the sun alone (no emissive material), in millimetres.
+    write_file(dir, "lx.json", R"json({
+  "units": "mm",
+  "polygons": [{"material": "grey", "vertices": [[0, 0, 0], [1000, 0, 0], [0, 1000, 0]]}],
+  "materials": {"grey": {"reflectance": 0.5}},
+  "sun": {"direction": [0, -3, 4], "illuminance_lx": 80000, "color": [1, 0.9, 0.8]}
+})json");
+    const Scene lx = load_scene(dir + "/lx.json");
+    ASSERT_TRUE(lx.sun.has_value());
+    EXPECT_TRUE(lx.has_emitter());
+    EXPECT_NEAR(lx.sun->direction.y, -0.6, 1e-15); // normalised, not scaled by mm
+    EXPECT_NEAR(lx.sun->direction.z, 0.8, 1e-15);
+    EXPECT_NEAR(to_photometric(lx.sun->irradiance), 80000.0, 80000.0 * 1e-6);
+    EXPECT_NEAR(lx.sun->irradiance.b / lx.sun->irradiance.r, 0.8, 1e-6);
+    EXPECT_EQ(lx.sun->angular_diameter_deg, 0.533);
+    EXPECT_NEAR(lx.sun->angular_radius(), 0.2665 * k_pi / 180, 1e-15);
+    // E_n · max(0, cos θ).
+    EXPECT_NEAR(lx.sun->unoccluded({0, 0, 1}).g, 0.8 * lx.sun->irradiance.g, 1e-3);
+    EXPECT_EQ(lx.sun->unoccluded({0, 0.6, -0.8}), Rgb{});
+
+    write_file(dir, "w.json", lamp_scene(R"json(,
+  "sun": {"direction": [1, 0, 0], "irradiance_w_m2": [500, 450, 400],
+          "angular_diameter_deg": 0})json"));
+    const Scene w = load_scene(dir + "/w.json");
+    ASSERT_TRUE(w.sun.has_value());
+    EXPECT_EQ(w.sun->irradiance, Rgb(500, 450, 400));
+    EXPECT_EQ(w.sun->angular_diameter_deg, 0.0);
+    write_file(dir, "grey.json", lamp_scene(R"json(,
+  "sun": {"direction": [1, 0, 1], "irradiance_w_m2": 300, "angular_diameter_deg": 10})json"));
+    EXPECT_EQ(load_scene(dir + "/grey.json").sun->irradiance, Rgb(300));
+}
+
+TEST(SceneIo, BadSunsNameTheKey) {
+    const std::string dir = test::temp_dir("scene-bad-sun");
+    struct Case {
+        const char* sun;
+        std::initializer_list<std::string> parts;
+    };
+    const Case cases[] = {
+        {R"({"direction": [0, 0, 0], "illuminance_lx": 1e5})", {"'sun.direction'", "non-zero"}},
+        {R"({"direction": ["nan", 0, 1], "illuminance_lx": 1e5})",
+         {"'sun.direction'", "expected 3 numbers"}},
+        {R"({"direction": [0, 1], "illuminance_lx": 1e5})",
+         {"'sun.direction'", "expected 3 numbers"}},
+        {R"({"illuminance_lx": 1e5})", {"'sun.direction'", "missing required key"}},
+        {R"({"direction": [0, 0, 1], "illuminance_lx": -5})",
+         {"'sun.illuminance_lx'", ">= 0", "got -5"}},
+        {R"({"direction": [0, 0, 1], "irradiance_w_m2": [1, -1, 1]})",
+         {"'sun.irradiance_w_m2'", ">= 0"}},
+        {R"({"direction": [0, 0, 1], "irradiance_w_m2": "bright"})",
+         {"'sun.irradiance_w_m2'", "expected 3 numbers (or one number)"}},
+        {R"({"direction": [0, 0, 1]})", {"'sun'", "exactly one of 'illuminance_lx'"}},
+        {R"({"direction": [0, 0, 1], "illuminance_lx": 1, "irradiance_w_m2": 1})",
+         {"'sun'", "exactly one of 'illuminance_lx'"}},
+        {R"({"direction": [0, 0, 1], "irradiance_w_m2": 1, "color": [1, 1, 0]})",
+         {"'sun.color'", "only used with 'illuminance_lx'"}},
+        {R"({"direction": [0, 0, 1], "illuminance_lx": 1, "color": [0, 0, 0]})",
+         {"'sun.color'", "non-zero luminance"}},
+        {R"({"direction": [0, 0, 1], "illuminance_lx": 1, "angular_diameter_deg": -1})",
+         {"'sun.angular_diameter_deg'", "[0, 10]", "got -1"}},
+        {R"({"direction": [0, 0, 1], "illuminance_lx": 1, "angular_diameter_deg": 45})",
+         {"'sun.angular_diameter_deg'", "got 45"}},
+        {R"({"direction": [0, 0, 1], "illuminance_lx": 1, "elevation_deg": 30})",
+         {"'sun.elevation_deg'", "unknown key 'elevation_deg'", "angular_diameter_deg"}},
+        {R"([0, 0, 1])", {"'sun'", "expected an object"}},
+    };
+    int i = 0;
+    for (const Case& c : cases) {
+        const std::string name = "sun" + std::to_string(i++) + ".json";
+        write_file(dir, name, lamp_scene(std::string(",\n  \"sun\": ") + c.sun));
+        expect_one_line_error(dir + "/" + name, c.parts, name);
+    }
+}
+
+TEST(SceneIo, ValidateChecksSunsBuiltInCode) {
+    Scene scene;
+    scene.file = "code";
+    scene.sun = Sun{{0, -2, 2}, Rgb(500.0f), 0.533};
+    scene.polygons.push_back({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, 0, "floor", "code:0"});
+    scene.materials.push_back(Material{});
+    Scene ok = scene;
+    validate_scene(ok); // the sun is the emitter
+    EXPECT_NEAR(ok.sun->direction.z, std::sqrt(0.5), 1e-15); // normalised in place
+    Scene nan = scene;
+    nan.sun->direction.x = std::nan("");
+    expect_input_error([&] { validate_scene(nan); }, {"'sun.direction'", "finite, non-zero"});
+    Scene zero = scene;
+    zero.sun->direction = {};
+    expect_input_error([&] { validate_scene(zero); }, {"'sun.direction'"});
+    Scene negative = scene;
+    negative.sun->irradiance.g = -1;
+    expect_input_error([&] { validate_scene(negative); }, {"'sun'", "irradiance", ">= 0"});
+    Scene wide = scene;
+    wide.sun->angular_diameter_deg = 20;
+    expect_input_error([&] { validate_scene(wide); }, {"'sun.angular_diameter_deg'", "got 20"});
+    Scene dark = scene;
+    dark.sun->irradiance = Rgb{};
+    expect_input_error([&] { validate_scene(dark); }, {"scene has no emitter", "'sun'"});
 }
 
 TEST(SceneIo, SensorsInlineAndFromPtsFile) {

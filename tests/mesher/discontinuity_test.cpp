@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -285,6 +286,231 @@ TEST(Discontinuity, SpotCastsBoundariesOnlyInsideItsCone) {
     EXPECT_TRUE(mesher::build_mesh(b.scene, test::quiet_context()).discontinuities.empty());
 }
 
+// ---- The sun: a disc of 0.533° at infinity ----
+
+Sun make_sun(double altitude_deg, double azimuth_deg) {
+    const double alt = altitude_deg * k_pi / 180, az = azimuth_deg * k_pi / 180;
+    return Sun{{std::cos(alt) * std::cos(az), std::cos(alt) * std::sin(az), std::sin(alt)},
+               Rgb(500.0f), 0.533};
+}
+
+// The direction of the sun's rim at angle phi around its centre.
+Vec3 rim_direction(const Sun& sun, double phi) {
+    const Frame f = Frame::from_normal(sun.direction);
+    const double r = sun.angular_diameter_deg * k_pi / 360;
+    return f.to_world({std::sin(r) * std::cos(phi), std::sin(r) * std::sin(phi), std::cos(r)});
+}
+
+// The rim directions whose planes through the line pq turn farthest either way around it:
+// the planes of the edge's umbra and penumbra boundaries, found numerically (the plane's angle
+// around pq sampled over the rim, then a ternary search), not from the mesher's formula.
+std::array<Vec3, 2> extreme_rim_directions(const Sun& sun, const Vec3& p, const Vec3& q) {
+    const Vec3 e = normalize(q - p);
+    const Vec3 b1 = normalize(sun.direction - e * dot(sun.direction, e)), b2 = cross(e, b1);
+    std::array<Vec3, 2> out;
+    for (int k = 0; k < 2; ++k) {
+        const double sign = k == 0 ? 1 : -1;
+        auto turn = [&](double phi) {
+            const Vec3 d = rim_direction(sun, phi);
+            return sign * std::atan2(dot(d, b2), dot(d, b1));
+        };
+        const int n = 3600;
+        int best = 0;
+        for (int i = 1; i < n; ++i)
+            if (turn(2 * k_pi * i / n) > turn(2 * k_pi * best / n))
+                best = i;
+        double lo = 2 * k_pi * (best - 1) / n, hi = 2 * k_pi * (best + 1) / n;
+        for (int it = 0; it < 200; ++it) {
+            const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+            (turn(m1) < turn(m2) ? lo : hi) = turn(m1) < turn(m2) ? m1 : m2;
+        }
+        out[std::size_t(k)] = rim_direction(sun, 0.5 * (lo + hi));
+    }
+    return out;
+}
+
+// The shadow of p on the floor z = 0 along the direction d toward the sun.
+Vec3 floor_shadow(const Vec3& p, const Vec3& d) { return p - d * (p.z / d.z); }
+
+Poly2 direction_shadow(const BoxScene& b, const Vec3& d) {
+    std::vector<std::array<double, 2>> pts(b.footprint.begin(), b.footprint.end());
+    for (const Vec3& c : b.top) {
+        const Vec3 p = floor_shadow(c, d);
+        pts.push_back({p.x, p.y});
+    }
+    return convex_hull(pts);
+}
+
+// A box on a floor under an oblique sun: every analytic umbra and penumbra boundary — the
+// shadows of the box's silhouette edges along the two rim directions whose planes through the
+// edge are extreme — lies on element edges (vertices within 1e-6 × the scene diagonal), where
+// it is a boundary: on the penumbra's outer edge (inside no other direction's shadow) or the
+// umbra's (inside all), off the footprint. Shadows are taken for 720 rim directions and the
+// extreme ones.
+struct SunCase {
+    double altitude_deg, azimuth_deg;
+};
+
+class SunOverBox : public ::testing::TestWithParam<SunCase> {};
+
+TEST_P(SunOverBox, UmbraAndPenumbraBoundariesLieOnElementEdges) {
+    BoxScene b = box_scene();
+    b.scene.polygons.pop_back(); // no area light
+    const Sun sun = make_sun(GetParam().altitude_deg, GetParam().azimuth_deg);
+    b.scene.sun = sun;
+    const RadiosityMesh mesh = mesher::build_mesh(b.scene, test::quiet_context());
+    const auto floor = std::uint32_t(test::find_patch(mesh, 0));
+    const double x0 = 1.5, x1 = 2.4, y0 = 1.6, y1 = 2.3, h = 0.8;
+    // The box's edges with the normals of their two faces; silhouettes part a lit face from
+    // an unlit one.
+    struct Edge {
+        Vec3 p, q, n1, n2;
+    };
+    const Vec3 up(0, 0, 1), mx(-1, 0, 0), px(1, 0, 0), my(0, -1, 0), py(0, 1, 0);
+    const Edge edges[] = {{{x0, y0, h}, {x1, y0, h}, up, my}, {{x1, y0, h}, {x1, y1, h}, up, px},
+                          {{x0, y1, h}, {x1, y1, h}, up, py}, {{x0, y0, h}, {x0, y1, h}, up, mx},
+                          {{x1, y0, 0}, {x1, y0, h}, my, px}, {{x1, y1, 0}, {x1, y1, h}, px, py},
+                          {{x0, y1, 0}, {x0, y1, h}, py, mx}, {{x0, y0, 0}, {x0, y0, h}, mx, my}};
+    std::vector<std::array<Vec3, 2>> silhouette;
+    for (const Edge& e : edges)
+        if ((dot(e.n1, sun.direction) > 0) != (dot(e.n2, sun.direction) > 0))
+            silhouette.push_back({e.p, e.q});
+    ASSERT_EQ(silhouette.size(), 4u);
+    std::vector<Vec3> dirs;
+    for (int i = 0; i < 720; ++i)
+        dirs.push_back(rim_direction(sun, 2 * k_pi * i / 720));
+    struct Line {
+        Vec3 a, b;
+        std::size_t dir;
+    };
+    std::vector<Line> lines;
+    for (const auto& [p, q] : silhouette)
+        for (const Vec3& d : extreme_rim_directions(sun, p, q)) {
+            dirs.push_back(d);
+            lines.push_back({floor_shadow(p, d), floor_shadow(q, d), dirs.size() - 1});
+        }
+    std::vector<Poly2> shadows;
+    for (const Vec3& d : dirs)
+        shadows.push_back(direction_shadow(b, d));
+    const Poly2 footprint{{b.footprint.begin(), b.footprint.end()}};
+    const double tol = 1e-6 * mesh.scene_diagonal;
+    int checked = 0;
+    for (std::size_t li = 0; li < lines.size(); ++li) {
+        const Line& line = lines[li];
+        const int n = 400;
+        auto point = [&](int j) { return line.a + (line.b - line.a) * (double(j) / n); };
+        int run_start = -1;
+        auto close_run = [&](int end) {
+            if (run_start >= 0 && end - run_start >= 2) {
+                EXPECT_TRUE(test::segment_on_element_edges(mesh, floor, point(run_start),
+                                                           point(end - 1), tol))
+                    << "line " << li << ", samples " << run_start << "-" << end - 1;
+                ++checked;
+            }
+            run_start = -1;
+        };
+        for (int j = 0; j <= n; ++j) {
+            const std::array<double, 2> x{point(j).x, point(j).y};
+            bool outer = true, umbra = true;
+            for (std::size_t m = 0; m < shadows.size(); ++m) {
+                if (m == line.dir)
+                    continue;
+                const double depth = inside_depth(shadows[m], x);
+                outer = outer && depth < 1e-9;
+                umbra = umbra && depth > -1e-9;
+            }
+            const bool wanted = (outer || umbra) && inside_depth(footprint, x) < -1e-4;
+            if (wanted && run_start < 0)
+                run_start = j;
+            if (!wanted)
+                close_run(j);
+        }
+        close_run(n + 1);
+    }
+    EXPECT_GE(checked, 8); // an umbra and a penumbra boundary per silhouette edge
+    std::array<int, 3> orders{0, 0, 0};
+    for (const DiscontinuitySegment& d : mesh.discontinuities) {
+        EXPECT_EQ(d.source, -1); // the sun
+        ++orders[std::size_t(d.order)];
+    }
+    std::printf("sun at %g deg altitude, %g deg azimuth over a box: %zu segments (D0 %d, D1 %d, "
+                "D2 %d), %d boundary runs checked\n",
+                GetParam().altitude_deg, GetParam().azimuth_deg, mesh.discontinuities.size(),
+                orders[0], orders[1], orders[2], checked);
+    EXPECT_GT(orders[0], 0); // the box's contact with the floor
+    EXPECT_EQ(orders[1], 0); // a disc has no straight edges
+    EXPECT_GT(orders[2], 0);
+
+    b.scene.mesher.discontinuity.max_order = 1; // the sun's boundaries are D2
+    const RadiosityMesh d0 = mesher::build_mesh(b.scene, test::quiet_context());
+    ASSERT_FALSE(d0.discontinuities.empty());
+    for (const DiscontinuitySegment& d : d0.discontinuities)
+        EXPECT_EQ(d.order, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Suns, SunOverBox,
+                         ::testing::Values(SunCase{40, 210}, SunCase{25, 300}, SunCase{60, 100},
+                                           SunCase{30, 20}, SunCase{75, 250}, SunCase{50, 135}),
+                         [](const ::testing::TestParamInfo<SunCase>& info) {
+                             return "altitude" + std::to_string(int(info.param.altitude_deg)) +
+                                    "_azimuth" + std::to_string(int(info.param.azimuth_deg));
+                         });
+
+// Plate A (height 1) casts its edge x = 1.6 on the floor at x ≈ 2.18 ± 6 mm (the umbra and
+// penumbra boundaries) under a sun at 60° altitude from −x; plate B (height 2) takes the sun
+// from that edge, and so from both boundaries, for y > 2.25.
+TEST(Discontinuity, SunBoundaryHiddenByAnotherBlockerIsLeftOut) {
+    Scene scene;
+    auto white = add_material(scene, "white", Rgb(0.5f));
+    add_rect(scene, "floor", white, {-1, -1, 0}, {5, 0, 0}, {0, 6, 0});
+    add_rect(scene, "plate_a", white, {1.0, 1.2, 1}, {0.6, 0, 0}, {0, 1.6, 0});
+    add_rect(scene, "plate_b", white, {0.9, 2.25, 2}, {0.25, 0, 0}, {0, 0.95, 0});
+    const Sun sun = make_sun(60, 180);
+    scene.sun = sun;
+    scene.mesher.max_edge_length = 0.25;
+    const RadiosityMesh mesh = mesher::build_mesh(scene, test::quiet_context());
+    const double tol = 1e-6 * mesh.scene_diagonal;
+    const auto floor = std::uint32_t(test::find_patch(mesh, 0));
+    const Vec3 p(1.6, 0, 1), q(1.6, 1, 1); // the edge's line
+    for (const Vec3& d : extreme_rim_directions(sun, p, q)) {
+        const double x = floor_shadow(p, d).x;
+        auto on_boundary = [&](double y) {
+            const Vec3 at(x, y, 0);
+            return std::any_of(mesh.discontinuities.begin(), mesh.discontinuities.end(),
+                               [&](const DiscontinuitySegment& s) {
+                                   return s.surface == 0 && distance_to_segment(at, s.a, s.b) < tol;
+                               });
+        };
+        for (double y = 1.3; y <= 2.15; y += 0.05)
+            EXPECT_TRUE(on_boundary(y)) << "visible part missing at x = " << x << ", y = " << y;
+        for (double y = 2.35; y <= 2.7; y += 0.05)
+            EXPECT_FALSE(on_boundary(y)) << "hidden part inserted at x = " << x << ", y = " << y;
+        EXPECT_TRUE(test::segment_on_element_edges(mesh, floor, {x, 1.3, 0}, {x, 2.15, 0}, tol));
+    }
+}
+
+// The sun below a receiver's horizon casts nothing on it: a one-sided wall facing away from
+// the sun gets no boundaries from the box's shadow, the same wall two-sided does (on its side
+// facing the sun).
+TEST(Discontinuity, SunCastsNothingOnAReceiverFacingAway) {
+    for (bool two_sided : {false, true}) {
+        BoxScene b = box_scene();
+        b.scene.polygons.pop_back(); // no area light
+        b.scene.sun = make_sun(40, 210);
+        auto wall_material = add_material(b.scene, "wall", Rgb(0.5f), {}, two_sided);
+        const auto wall = std::uint32_t(b.scene.polygons.size());
+        add_rect(b.scene, "wall", wall_material, {3.0, 1.5, 0}, {0, 2, 0}, {0, 0, 1.5}); // faces +x
+        const RadiosityMesh mesh = mesher::build_mesh(b.scene, test::quiet_context());
+        const auto on_wall = std::count_if(
+            mesh.discontinuities.begin(), mesh.discontinuities.end(),
+            [&](const DiscontinuitySegment& d) { return mesh.surfaces[d.surface].polygon == wall; });
+        if (two_sided)
+            EXPECT_GT(on_wall, 0);
+        else
+            EXPECT_EQ(on_wall, 0);
+    }
+}
+
 TEST(Discontinuity, MeshQualityStaysWithinBounds) {
     const BoxScene b = box_scene();
     const RadiosityMesh mesh = mesher::build_mesh(b.scene, test::quiet_context());
@@ -312,16 +538,21 @@ TEST(Discontinuity, MeshQualityStaysWithinBounds) {
 }
 
 TEST(Discontinuity, MeshDoesNotDependOnTheThreadCount) {
-    const BoxScene b = box_scene();
-    const RadiosityMesh one = mesher::build_mesh(b.scene, test::quiet_context(1));
-    const RadiosityMesh four = mesher::build_mesh(b.scene, test::quiet_context(4));
-    EXPECT_EQ(one.positions, four.positions);
-    EXPECT_EQ(one.triangles, four.triangles);
-    EXPECT_EQ(one.element_patch, four.element_patch);
-    ASSERT_EQ(one.discontinuities.size(), four.discontinuities.size());
-    for (std::size_t i = 0; i < one.discontinuities.size(); ++i) {
-        EXPECT_EQ(one.discontinuities[i].a, four.discontinuities[i].a);
-        EXPECT_EQ(one.discontinuities[i].order, four.discontinuities[i].order);
+    for (const bool sun : {false, true}) {
+        BoxScene b = box_scene();
+        if (sun)
+            b.scene.sun = make_sun(40, 210); // with the area light
+        const RadiosityMesh one = mesher::build_mesh(b.scene, test::quiet_context(1));
+        const RadiosityMesh four = mesher::build_mesh(b.scene, test::quiet_context(4));
+        EXPECT_EQ(one.positions, four.positions) << "sun " << sun;
+        EXPECT_EQ(one.triangles, four.triangles);
+        EXPECT_EQ(one.element_patch, four.element_patch);
+        ASSERT_EQ(one.discontinuities.size(), four.discontinuities.size());
+        for (std::size_t i = 0; i < one.discontinuities.size(); ++i) {
+            EXPECT_EQ(one.discontinuities[i].a, four.discontinuities[i].a);
+            EXPECT_EQ(one.discontinuities[i].order, four.discontinuities[i].order);
+            EXPECT_EQ(one.discontinuities[i].source, four.discontinuities[i].source);
+        }
     }
 }
 

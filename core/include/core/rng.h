@@ -17,6 +17,7 @@ enum class RngPurpose : std::uint64_t {
     pixel_sample = 6,
     vertex_visibility = 7,
     cluster_visibility = 8,
+    sun_visibility = 9,
 };
 
 /// SplitMix64 finaliser: a strong 64-bit mix.

@@ -1,6 +1,6 @@
 #pragma once
-// The scene description: polygons with materials, point lights, sensors, camera and the
-// settings of each stage. Everything is in metres and radiometric RGB after loading; the
+// The scene description: polygons with materials, point lights, the sun, sensors, camera and
+// the settings of each stage. Everything is in metres and radiometric RGB after loading; the
 // scene file's units and photometric quantities are converted by the loader.
 
 #include <cstdint>
@@ -63,6 +63,23 @@ struct PointLight {
     RgbD power() const;
 };
 
+/// \brief The sun: a disc of uniform radiance at infinity. Its direct irradiance on a surface
+///        point of unit normal n is irradiance · max(0, cos θ) · V, with θ the angle between
+///        n and \p direction and V the visible fraction of the disc (exact where the disc is
+///        wholly above the surface's horizon: the cosine-weighted integral of a uniform disc is
+///        its normal irradiance times the cosine to its centre).
+struct Sun {
+    Vec3 direction{0, 0, 1};             ///< unit, from the scene toward the disc's centre
+    Rgb irradiance;                      ///< direct normal irradiance, W/m² per channel
+    double angular_diameter_deg = 0.533; ///< in [0, 10]; 0 = parallel light (hard shadows)
+
+    /// \brief Angular radius of the disc, radians.
+    double angular_radius() const;
+    /// \brief irradiance · max(0, dot(n, direction)): the unoccluded direct irradiance on a
+    ///        surface of unit normal \p n, W/m² per channel.
+    Rgb unoccluded(const Vec3& n) const;
+};
+
 /// \brief A sensor: a point and the normal of the receiving plane.
 struct Sensor {
     std::string name;
@@ -79,8 +96,8 @@ struct Camera {
     double exposure = 0.0;      ///< 0 = automatic; else multiplier on radiance before sRGB
 };
 
-/// \brief Discontinuity meshing (issue #5): shadow boundaries of emissive polygons and point
-///        lights inserted as element edges.
+/// \brief Discontinuity meshing (issue #5): shadow boundaries of emissive polygons, point
+///        lights and the sun inserted as element edges.
 struct DiscontinuitySettings {
     bool enabled = true;
     int max_order = 2; ///< highest order inserted: 0 = D0 only, 1 = D0 and D1, 2 = D0 to D2
@@ -125,12 +142,14 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Polygon> polygons;
     std::vector<PointLight> point_lights;
+    std::optional<Sun> sun;
     std::vector<Sensor> sensors;
     std::optional<Camera> camera;
     MesherSettings mesher;
     SolverSettings solver;
 
     BBox bounds() const;
+    /// Some polygon emits, or a point light or the sun has a non-zero intensity.
     bool has_emitter() const;
 };
 

@@ -19,7 +19,9 @@ namespace penumbra::solver {
 /// \brief Power bookkeeping of a solve, W per channel. emitted = absorbed + escaped + residual
 ///        up to discretisation error (reported as imbalance).
 struct PowerBalance {
-    RgbD emitted;  ///< by emissive elements and point lights
+    /// By emissive elements and point lights, and by the sun: the power its direct light
+    /// delivers to the scene's surfaces (Σ E_direct,sun A), none of which escapes.
+    RgbD emitted;
     RgbD absorbed; ///< Σ (1 − ρ) H A over elements
     RgbD escaped;  ///< leaving the scene through openings (estimated by its own rays)
     RgbD residual; ///< unshot power left when the solve stopped

@@ -24,6 +24,7 @@
 #include "core/rng.h"
 #include "core/scene_io.h"
 #include "mesher/mesher.h"
+#include "bench_process.h"
 #include "office_scene.h"
 #include "raytrace/raytrace.h"
 
@@ -51,7 +52,10 @@
 namespace {
 
 using namespace penumbra;
-using Clock = std::chrono::steady_clock;
+using bench::Clock;
+using bench::parse_size;
+using bench::peak_rss_mib;
+using bench::seconds_since;
 
 struct Options {
     std::vector<std::string> sizes{"1k", "2k", "8k", "32k"};
@@ -64,33 +68,6 @@ struct Options {
     bool verbose = false;
     std::string child; ///< internal: run this one size in this process
 };
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-/// "32k" → 32 000, "1M" → 1 000 000.
-std::int64_t parse_size(const std::string& text) {
-    const auto suffix = text.find_first_of("kM");
-    const double scale = suffix == std::string::npos ? 1 : text[suffix] == 'k' ? 1e3 : 1e6;
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (end != text.c_str() + std::min(suffix, text.size()) ||
-        (suffix != std::string::npos && suffix + 1 != text.size()) || !(value >= 1))
-        throw ConfigError("size '" + text +
-                          "': expected a number of triangles such as 2000, "
-                          "32k or 1M");
-    return std::int64_t(value * scale);
-}
-
-/// Peak resident set size of this process so far (VmHWM), MiB.
-double peak_rss_mib() {
-    std::ifstream status("/proc/self/status");
-    for (std::string line; std::getline(status, line);)
-        if (line.rfind("VmHWM:", 0) == 0)
-            return std::stod(line.substr(6)) / 1024.0; // kB
-    return 0;
-}
 
 class StderrSink final : public LogSink {
 public:
@@ -293,33 +270,12 @@ void run_in_child(const std::string& size, const Options& options) {
         args.push_back("--no-solve");
     if (options.verbose)
         args.push_back("-v");
-    std::vector<char*> argv;
-    for (std::string& a : args)
-        argv.push_back(a.data());
-    argv.push_back(nullptr);
-    const pid_t pid = ::fork();
-    if (pid < 0)
-        throw ExternalError("hr_bench: fork failed");
-    if (pid == 0) {
-        ::execv("/proc/self/exe", argv.data());
-        ::_exit(127);
-    }
-    const Clock::time_point start = Clock::now();
-    int status = 0;
-    while (::waitpid(pid, &status, WNOHANG) == 0) {
-        if (seconds_since(start) > options.max_seconds) {
-            ::kill(pid, SIGKILL);
-            ::waitpid(pid, &status, 0);
-            std::printf("%-6s stopped after %.0f s (--max-seconds)\n", size.c_str(),
-                        options.max_seconds);
-            return;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    if (WIFSIGNALED(status))
-        std::printf("%-6s failed: signal %d\n", size.c_str(), WTERMSIG(status));
-    else if (WEXITSTATUS(status) != 0)
-        std::printf("%-6s failed: exit code %d\n", size.c_str(), WEXITSTATUS(status));
+    const bench::ChildRun run = bench::run_self(std::move(args), options.max_seconds, false);
+    if (run.stopped)
+        std::printf("%-6s stopped after %.0f s (--max-seconds)\n", size.c_str(),
+                    options.max_seconds);
+    else if (!run.failure().empty())
+        std::printf("%-6s failed: %s\n", size.c_str(), run.failure().c_str());
     std::fflush(stdout);
 }
 

@@ -39,16 +39,16 @@
 #include "core/error.h"
 #include "core/scene_io.h"
 #include "mesher/mesher.h"
+#include "bench_process.h"
 #include "office_scene.h"
 
 namespace {
 
 using namespace penumbra;
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using bench::Clock;
+using bench::parse_size;
+using bench::peak_rss_mib;
+using bench::seconds_since;
 
 /// Mesher messages on stderr; of the warnings, which the generated floors repeat per office,
 /// only the first few.
@@ -174,29 +174,6 @@ void office_table(const Options& o) {
 
 // ---- Table 2: scaling with the input size, one child process per size ----
 
-/// "32k" → 32 000, "1M" → 1 000 000.
-std::int64_t parse_size(const std::string& text) {
-    const auto suffix = text.find_first_of("kM");
-    const double scale = suffix == std::string::npos ? 1 : text[suffix] == 'k' ? 1e3 : 1e6;
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (end != text.c_str() + std::min(suffix, text.size()) ||
-        (suffix != std::string::npos && suffix + 1 != text.size()) || !(value >= 1))
-        throw ConfigError("size '" + text +
-                          "': expected a number of triangles such as 2000, "
-                          "128k or 1M");
-    return std::int64_t(value * scale);
-}
-
-/// Peak resident set size of this process so far (VmHWM), MiB.
-double peak_rss_mib() {
-    std::ifstream status("/proc/self/status");
-    for (std::string line; std::getline(status, line);)
-        if (line.rfind("VmHWM:", 0) == 0)
-            return std::stod(line.substr(6)) / 1024.0; // kB
-    return 0;
-}
-
 /// CPU seconds (user + system) of this process so far, all threads.
 double cpu_seconds() {
     rusage usage{};
@@ -244,48 +221,17 @@ bool run_in_child(const std::string& size, const Options& o, ChildRow& row) {
         args.push_back("--discontinuities");
     if (o.verbose)
         args.push_back("-v");
-    std::vector<char*> argv;
-    for (std::string& a : args)
-        argv.push_back(a.data());
-    argv.push_back(nullptr);
-    int fds[2];
-    if (::pipe(fds) != 0)
-        throw ExternalError("mesh_bench: pipe failed");
-    const pid_t pid = ::fork();
-    if (pid < 0)
-        throw ExternalError("mesh_bench: fork failed");
-    if (pid == 0) {
-        ::dup2(fds[1], STDOUT_FILENO);
-        ::close(fds[0]);
-        ::close(fds[1]);
-        ::execv("/proc/self/exe", argv.data());
-        ::_exit(127);
+    const bench::ChildRun run = bench::run_self(std::move(args), o.max_seconds, true);
+    if (run.stopped) {
+        std::printf("%-6s stopped after %.0f s (--max-seconds)\n", size.c_str(), o.max_seconds);
+        return false;
     }
-    ::close(fds[1]);
-    const Clock::time_point start = Clock::now();
-    int status = 0;
-    while (::waitpid(pid, &status, WNOHANG) == 0) {
-        if (seconds_since(start) > o.max_seconds) {
-            ::kill(pid, SIGKILL);
-            ::waitpid(pid, &status, 0);
-            ::close(fds[0]);
-            std::printf("%-6s stopped after %.0f s (--max-seconds)\n", size.c_str(), o.max_seconds);
-            return false;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    std::string out;
-    char buffer[512];
-    for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;)
-        out.append(buffer, std::size_t(n));
-    ::close(fds[0]);
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 ||
-        std::sscanf(out.c_str(), "%lld %zu %zu %zu %le %lf %lf %lf %llx", &row.triangles,
+    if (!run.failure().empty() ||
+        std::sscanf(run.out.c_str(), "%lld %zu %zu %zu %le %lf %lf %lf %llx", &row.triangles,
                     &row.surfaces, &row.elements, &row.vertices, &row.area, &row.seconds, &row.cpu,
                     &row.peak_mib, &row.hash) != 9) {
         std::printf("%-6s failed (%s)\n", size.c_str(),
-                    WIFSIGNALED(status) ? fmt::format("signal {}", WTERMSIG(status)).c_str()
-                                        : fmt::format("exit code {}", WEXITSTATUS(status)).c_str());
+                    run.failure().empty() ? "unreadable output" : run.failure().c_str());
         return false;
     }
     return true;

@@ -256,16 +256,21 @@ PolygonSpec parse_polygon(const Field& field, double metres_per_unit) {
     return spec;
 }
 
+/// A direction: any non-zero vector, not scaled by the units, normalised; \p what follows
+/// "expected a non-zero vector" in the error.
+Vec3 unit_direction(const Field& field, const char* what) {
+    const Vec3 d = field.vec3();
+    if (length(d) == 0)
+        field.fail(std::string("expected a non-zero vector") + what);
+    return normalize(d);
+}
+
 // "spot": {"direction": [x, y, z], "beam_deg": a, "cutoff_deg": b}, half-angles with
 // 0 ≤ a ≤ b ≤ 180 and b > 0; the direction is not scaled by the units and is normalised.
 SpotCone parse_spot(const Field& field) {
     field.expect_keys({"direction", "beam_deg", "cutoff_deg"});
     SpotCone spot;
-    const Field direction = field.required("direction");
-    spot.direction = direction.vec3();
-    if (length(spot.direction) == 0)
-        direction.fail("expected a non-zero vector");
-    spot.direction = normalize(spot.direction);
+    spot.direction = unit_direction(field.required("direction"), "");
     const Field cutoff = field.required("cutoff_deg");
     spot.cutoff_deg = cutoff.number();
     if (!(spot.cutoff_deg > 0 && spot.cutoff_deg <= 180))
@@ -318,11 +323,7 @@ Sun parse_sun(const Field& field) {
     field.expect_keys({"direction", "illuminance_lx", "irradiance_w_m2", "color",
                        "angular_diameter_deg"});
     Sun sun;
-    const Field direction = field.required("direction");
-    sun.direction = direction.vec3();
-    if (length(sun.direction) == 0)
-        direction.fail("expected a non-zero vector (toward the sun)");
-    sun.direction = normalize(sun.direction);
+    sun.direction = unit_direction(field.required("direction"), " (toward the sun)");
     const bool photometric = field.has("illuminance_lx");
     if (photometric == field.has("irradiance_w_m2"))
         field.fail("give exactly one of 'illuminance_lx' and 'irradiance_w_m2'");

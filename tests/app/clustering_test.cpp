@@ -9,6 +9,7 @@
 
 #include "app/pipeline.h"
 #include "office_scene.h"
+#include "common/bake_util.h"
 #include "common/test_util.h"
 
 namespace penumbra {
@@ -16,11 +17,7 @@ namespace {
 
 using test::add_material;
 
-app::BakeResult bake(const Scene& scene, int threads = 0) {
-    app::BakeOptions options;
-    options.render = false;
-    return app::bake(scene, options, test::quiet_context(threads));
-}
+using test::bake;
 
 // A closed room lit by a small ceiling lamp, with a box on the floor: nothing escapes, so the
 // absorbed power must equal the emitted power.

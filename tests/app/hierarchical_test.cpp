@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "app/pipeline.h"
+#include "common/bake_util.h"
 #include "common/test_util.h"
 #include "core/scene_io.h"
 
@@ -16,28 +17,14 @@ namespace {
 
 using test::add_material;
 
-app::BakeResult bake(const Scene& scene, int threads = 0) {
-    app::BakeOptions options;
-    options.render = false;
-    return app::bake(scene, options, test::quiet_context(threads));
-}
+using test::bake;
+using test::relative_l1;
 
-Scene cornell(double max_edge) {
-    Scene scene = load_scene(test::source_path("data/cornell/scene.json"));
-    scene.sensors.clear();
-    scene.mesher.max_edge_length = max_edge;
-    return scene;
-}
+Scene cornell(double max_edge) { return test::cornell_box(max_edge); }
 
-// Σ A |B − B_ref| / Σ A B_ref over elements and channels.
+// Σ A |B − B_ref| / Σ A B_ref over elements and channels (the same mesh).
 double relative_l1(const app::BakeResult& r, const app::BakeResult& ref) {
-    double diff = 0, norm = 0;
-    for (std::size_t e = 0; e < ref.mesh.element_count(); ++e) {
-        const double a = ref.mesh.element_area[e];
-        diff += a * std::abs(double((r.solution.radiosity[e] - ref.solution.radiosity[e]).sum()));
-        norm += a * double(ref.solution.radiosity[e].sum());
-    }
-    return diff / norm;
+    return relative_l1(r.solution.radiosity, ref.solution.radiosity, ref.mesh.element_area);
 }
 
 TEST(FixedElementMethods, ShootingJacobiGaussSeidelAndMatrixAgree) {

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "app/pipeline.h"
+#include "common/bake_util.h"
 #include "common/test_util.h"
 #include "core/scene_io.h"
 #include "mesher/mesher.h"
@@ -21,31 +22,16 @@ namespace {
 
 using test::add_material;
 
+using test::relative_l1;
+
+// The hierarchical solver with \p iteration.
 app::BakeResult bake(Scene scene, const char* iteration, int threads = 0) {
     scene.solver.method = "hierarchical";
     scene.solver.iteration = iteration;
-    app::BakeOptions options;
-    options.render = false;
-    return app::bake(scene, options, test::quiet_context(threads));
+    return test::bake(scene, threads);
 }
 
-Scene cornell(double max_edge) {
-    Scene scene = load_scene(test::source_path("data/cornell/scene.json"));
-    scene.sensors.clear();
-    scene.mesher.max_edge_length = max_edge;
-    return scene;
-}
-
-// Σ A |B − B_ref| / Σ A B_ref over elements and channels (same mesh).
-double relative_l1(const std::vector<Rgb>& b, const std::vector<Rgb>& ref,
-                   const std::vector<double>& area) {
-    double diff = 0, norm = 0;
-    for (std::size_t e = 0; e < ref.size(); ++e) {
-        diff += area[e] * std::abs(double((b[e] - ref[e]).sum()));
-        norm += area[e] * double(ref[e].sum());
-    }
-    return diff / norm;
-}
+Scene cornell(double max_edge) { return test::cornell_box(max_edge); }
 
 // ε = 1: the links between the roots are never refined, so every iteration solves exactly the
 // same system; converged to 1e-8 they agree to 1e-4 (the tolerance for methods on the
@@ -195,8 +181,9 @@ TEST(HierarchicalIterations, ShootingShowsAnEarlyImage) {
     double previous = 1e30;
     for (std::size_t i = 0; i < snapshots.size(); ++i) {
         const double e = relative_l1(snapshots[i], last, mesh.element_area);
-        if (i == 0)
+        if (i == 0) {
             EXPECT_LT(e, 0.5);
+        }
         EXPECT_LT(e, previous) << "snapshot " << i;
         previous = e;
     }

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "app/pipeline.h"
+#include "common/bake_util.h"
 #include "common/test_util.h"
 #include "core/error.h"
 #include "core/scene_io.h"
@@ -15,11 +16,9 @@
 namespace penumbra {
 namespace {
 
+// Bakes without the render, as a re-solve from \p reuse when given.
 app::BakeResult bake(const Scene& scene, const solver::HierarchicalState* reuse = nullptr) {
-    app::BakeOptions options;
-    options.render = false;
-    options.reuse = reuse;
-    return app::bake(scene, options, test::quiet_context());
+    return test::bake(scene, 0, reuse);
 }
 
 Scene cornell(double max_edge = 0.1, double epsilon = 3e-3) {

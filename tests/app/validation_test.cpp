@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "app/pipeline.h"
+#include "common/bake_util.h"
 #include "common/test_util.h"
 #include "core/scene_io.h"
 
@@ -23,9 +24,7 @@ using test::add_rect;
 app::BakeResult bake_no_render(Scene scene, int threads = 0,
                                const std::string& method = "shooting") {
     scene.solver.method = method;
-    app::BakeOptions options;
-    options.render = false;
-    return app::bake(scene, options, test::quiet_context(threads));
+    return test::bake(scene, threads);
 }
 
 // Area mean over the elements of the patches of polygon \p polygon on side \p back.

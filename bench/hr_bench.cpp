@@ -252,7 +252,7 @@ int run_child(const Options& options) {
     Context ctx;
     ctx.threads = options.threads;
     ctx.log = std::make_shared<StderrSink>();
-    ctx.min_level = options.verbose ? LogLevel::info : LogLevel::warn;
+    ctx.min_level = options.verbose ? LogLevel::debug : LogLevel::warn;
     print_row(options.child, run_size(parse_size(options.child), options, ctx));
     return 0;
 }

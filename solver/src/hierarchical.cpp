@@ -35,6 +35,11 @@ namespace penumbra::solver {
 namespace {
 
 constexpr int k_max_cycles = 12;
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 /// solver.clustering "auto" clusters meshes with more elements than this.
 constexpr std::size_t k_clustering_auto_roots = 3000;
 
@@ -132,20 +137,30 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     if (reuse) // the oracle should see the new materials' radiosities
         solve_links(h, links, v, clusters, scene.solver, iteration, emitted, log);
     for (int cycle = 0; cycle < k_max_cycles; ++cycle) {
+        auto t0 = Clock::now();
         const bool changed = links.refine(v.b, v.b_range);
+        const double refine_s = seconds_since(t0);
+        t0 = Clock::now();
         if (changed || v.weights.empty()) {
             v.weights = leaf_weights(h, links, v.weights);
             pull_emit(h, v);
         }
+        const double weights_s = seconds_since(t0);
+        t0 = Clock::now();
         Solved s = solve_links(h, links, v, clusters, scene.solver, iteration, emitted, log);
+        ctx.debug("hierarchical: cycle {}: refine {:.2f} s, leaf weights {:.2f} s, {} {:.2f} s",
+                  cycle, refine_s, weights_s,
+                  iteration == Iteration::shooting ? "shots" : "sweeps", seconds_since(t0));
         if (s.limit_hit)
             ctx.warn("hierarchical: cycle {} stopped at {} {} (solver.{}) with a change of "
                      "{:.3g} of the emitted power, above solver.residual {:.3g}",
                      cycle, s.sweeps, iteration == Iteration::shooting ? "shots" : "sweeps",
                      iteration == Iteration::shooting ? "max_shots" : "max_sweeps", s.relative,
                      scene.solver.residual);
-        ctx.info("hierarchical: cycle {}: {} nodes, {} links, {} {}, change {:.2e}", cycle,
-                 h.size(), links.link_count(), s.sweeps,
+        ctx.info("hierarchical: cycle {}: {} nodes, {} links ({} element, {} cluster, {} "
+                 "light), {} {}, change {:.2e}",
+                 cycle, h.size(), links.link_count(), links.links().size(),
+                 links.cluster_links().size(), links.light_links().size(), s.sweeps,
                  iteration == Iteration::shooting ? "shots" : "sweeps", s.relative);
         // The number of cycles is not known ahead (refinement stops when the radiosities stop
         // asking for it, usually after 3–6): half the bar for the first, which links and
@@ -154,6 +169,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
         if (!changed && cycle > 0)
             break;
     }
+    auto t0 = Clock::now();
     LeafMesh leaf = build_leaf_mesh(mesh, h, twin);
     ElementResult er;
     for (std::uint32_t node : leaf.element_node) {
@@ -173,6 +189,8 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     const DirectEmitters emitters{root_geo, direct_sources(scene, root_emission)};
     result.solution =
         make_solution(scene, leaf.mesh, geo, er, visibility, row_settings, ctx, &emitters);
+    ctx.debug("hierarchical: leaf mesh, vertices and sensors {:.2f} s", seconds_since(t0));
+    t0 = Clock::now();
     if (stats) {
         stats->shots = log.total;
         stats->links = links.link_count();
@@ -181,6 +199,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
                                                               ? 0.0
                                                               : stats->residual_history.back(),
                                             links.sun_power());
+        ctx.debug("hierarchical: power balance {:.2f} s", seconds_since(t0));
     }
     if (observer && observer->on_pass)
         observer->on_pass(root_snapshot(mesh, h, v), log.total, 0.0, true);

@@ -7,8 +7,11 @@
 //
 // Oracle: the irradiance the link brings to a surface facing the source (by the unbounded
 // point kernel), times the relative error of the point approximation (2 × the bounding radii
-// over the distance, at most 4) where it is visible, plus the uncertainty of its visibility (all of it for partly occluded links,
-// a quarter of the occluded part otherwise: four rays cannot tell 0 from 0.2).
+// over the distance, at most 4) where it is visible, plus the uncertainty of its visibility:
+// all of it for partly occluded links, 1/n for links all n of whose rays were blocked (n
+// blocked rays cannot tell 0 from about 1/n). Such a link is first given more rays (up to
+// 256), which is far cheaper than splitting it: the parts of a wall-separated pair are
+// occluded again, and splitting the receiver does not lower the irradiance in question.
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +27,21 @@ namespace {
 constexpr int k_cluster_rays = 4;
 constexpr int k_facing_tries = 8;
 constexpr double k_max_size_factor = 4.0;
+/// Rays a link all of whose rays were blocked may get before the oracle splits it instead.
+constexpr int k_max_cluster_rays = 256;
+/// Such a link gets rays until its uncertainty is this many times below the threshold: a link
+/// taken as occluded loses what light it carries, always in the same direction.
+constexpr double k_resample_margin = 16.0;
+
+// The part of the open irradiance a link's visibility may be off by: all of it where the rays
+// disagree; where all n were blocked, 1/n (n blocked rays cannot tell 0 from about 1/n).
+double visibility_uncertainty(const ClusterLink& link) {
+    if (link.partial)
+        return 1.0;
+    if (link.v > 0 || link.rays == 0)
+        return 0.0;
+    return 1.0 / double(link.rays);
+}
 
 enum ClusterDecision : std::uint8_t { keep = 0, split_receiver, split_source, split_self };
 
@@ -131,14 +149,28 @@ ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
         return link;
     link.d = Vec3f(d);
 
-    // The distance term 1/(π d²) is averaged over the rays' end points (the point kernel at
-    // the centres alone underestimates it: the mean of 1/d² exceeds 1/r²), bounded where the
-    // nodes nearly touch: such links carry light only while the oracle finds it negligible.
-    const double closest = 0.25 * (rq + rp);
-    Pcg32 rng = Pcg32::for_stream(RngPurpose::cluster_visibility, q, p, 0, settings_.rows.seed);
+    if (!cast_cluster_rays(link, k_cluster_rays)) { // no surface of an end faces the other
+        const double closest = 0.25 * (rq + rp), reach = std::max(r, closest);
+        link.g = float(1.0 / (k_pi * reach * reach));
+        link.v = 1.0f;
+    }
+    return link;
+}
+
+// The distance term 1/(π d²) is averaged over the rays' end points (the point kernel at the
+// centres alone underestimates it: the mean of 1/d² exceeds 1/r²), bounded where the nodes
+// nearly touch: such links carry light only while the oracle finds it negligible. g · v is
+// the mean over the rays of V / (π d²); g alone the mean over the open rays (over all while
+// none is open, which is what the link's g holds then).
+bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
+    const NodeRef q = link.receiver, p = link.source;
+    const Vec3 cq = node_centre(q), cp = node_centre(p);
+    const double closest = 0.25 * (node_radius(q) + node_radius(p));
+    Pcg32 rng = Pcg32::for_stream(RngPurpose::cluster_visibility, q, p, link.rays,
+                                  settings_.rows.seed);
     std::vector<Segment> segments;
     std::vector<double> kernel;
-    for (int k = 0; k < k_cluster_rays; ++k) {
+    for (int k = 0; k < count; ++k) {
         Vec3 nq, np;
         const Vec3 xq = sample_facing_point(q, cp, rng, nq);
         const Vec3 xp = sample_facing_point(p, cq, rng, np);
@@ -149,40 +181,47 @@ ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
         const double dd = std::max(dot(xp - xq, xp - xq), closest * closest);
         kernel.push_back(1.0 / (k_pi * dd));
     }
+    if (segments.empty())
+        return link.rays > 0;
     std::vector<std::uint8_t> blocked(segments.size());
     visibility_.occluded(segments, blocked);
-    std::size_t open = 0;
-    double g_open = 0, g_all = 0;
+    const double before = double(link.rays);
+    double open = double(link.v) * before;
+    double g_open = open > 0 ? double(link.g) * open : 0.0;
+    double g_all = open > 0 ? 0.0 : double(link.g) * before; // only read while none is open
     for (std::size_t k = 0; k < segments.size(); ++k) {
         g_all += kernel[k];
         if (!blocked[k]) {
-            ++open;
+            open += 1;
             g_open += kernel[k];
         }
     }
-    if (segments.empty()) {
-        const double reach = std::max(r, closest);
-        link.g = float(1.0 / (k_pi * reach * reach));
-        link.v = 1.0f;
-        return link;
-    }
-    // g · v = the mean over the rays of V / (π d²); g alone the unoccluded mean.
-    link.v = float(double(open) / double(segments.size()));
-    link.g = float(open > 0 ? g_open / double(open) : g_all / double(segments.size()));
-    link.partial = open > 0 && open < segments.size();
-    return link;
+    const double total = before + double(segments.size());
+    link.rays = std::uint16_t(total);
+    link.v = float(open / total);
+    link.g = float(open > 0 ? g_open / open : g_all / total);
+    link.partial = open > 0 && open < total;
+    return true;
 }
 
 double LinkSet::cluster_link_error(const ClusterLink& link, const std::vector<Rgb>& b) const {
-    const std::vector<Lobes>& exitance = *exitance_;
     if (link.self) // its parts could bring each other up to its brightest radiosity
         return double((*peak_)[cluster_index(link.receiver)]);
+    const double r = length(node_centre(link.source) - node_centre(link.receiver));
+    const double size_factor =
+        r > 0 ? std::min(k_max_size_factor,
+                         2.0 * (node_radius(link.receiver) + node_radius(link.source)) / r)
+              : k_max_size_factor;
+    return open_irradiance(link, b) *
+           (double(link.v) * size_factor + visibility_uncertainty(link));
+}
+
+double LinkSet::open_irradiance(const ClusterLink& link, const std::vector<Rgb>& b) const {
+    const std::vector<Lobes>& exitance = *exitance_;
     const NodeRef q = link.receiver, p = link.source;
     const Vec3 d(link.d);
     const double rq = node_radius(q), rp = node_radius(p);
     const double r = length(node_centre(p) - node_centre(q));
-    const double size_factor = r > 0 ? std::min(k_max_size_factor, 2.0 * (rq + rp) / r)
-                                     : k_max_size_factor;
     // Σ B A cos toward the receiver, relaxed by the angle the pair subtends: over a wide
     // angle the direction between the parts differs from the centres' (a lamp in one half of a
     // cluster pair radiates down onto the floor of the other half, not sideways).
@@ -199,12 +238,33 @@ double LinkSet::cluster_link_error(const ClusterLink& link, const std::vector<Rg
         intensity = double(b[p].max_component()) * h_.area[p] * cosine;
     }
     const double r_floor = 1e-6 * h_.diagonal; // coincident centres: refine, without overflow
-    const double open_irradiance = intensity / (k_pi * std::max(r * r, r_floor * r_floor));
-    const double v = double(link.v);
-    return open_irradiance * (v * size_factor + (link.partial ? 1.0 : 0.25 * (1.0 - v)));
+    return intensity / (k_pi * std::max(r * r, r_floor * r_floor));
+}
+
+// An all-blocked link above the threshold only for its visibility's uncertainty gets as many
+// rays as would bring that uncertainty under the threshold, up to k_max_cluster_rays: one
+// link's rays settle what would otherwise be split level after level (splitting its receiver
+// does not lower the irradiance it might bring).
+bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
+    const double threshold = settings_.cluster_threshold;
+    std::vector<std::uint8_t> changed(cluster_links_.size(), 0);
+    parallel_for_index(cluster_links_.size(), 256, [&](std::size_t k) {
+        ClusterLink& l = cluster_links_[k];
+        if (l.self || l.v > 0 || l.rays == 0 || l.rays >= k_max_cluster_rays)
+            return;
+        const double open = open_irradiance(l, b);
+        if (open / double(l.rays) <= threshold)
+            return;
+        const double wanted = std::min(double(k_max_cluster_rays),
+                                       std::ceil(k_resample_margin * open / threshold));
+        cast_cluster_rays(l, int(wanted) - int(l.rays));
+        changed[k] = 1;
+    });
+    return std::any_of(changed.begin(), changed.end(), [](std::uint8_t c) { return c != 0; });
 }
 
 bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
+    resample_occluded(b);
     std::vector<std::uint8_t> decision(cluster_links_.size(), keep);
     parallel_for_index(cluster_links_.size(), 256, [&](std::size_t k) {
         const ClusterLink& l = cluster_links_[k];

@@ -42,6 +42,9 @@ struct ClusterLink {
     Vec3f d;       ///< unit direction from the receiver's centre to the source's centre
     std::uint8_t partial = 0; ///< the rays disagreed
     std::uint8_t self = 0;    ///< a cluster's link to itself: carries nothing until refined
+    /// Visibility rays cast (0 where no surface of one end faces the other): 4, more for a
+    /// link all of whose rays were blocked while the oracle was unsure of it.
+    std::uint16_t rays = 0;
 };
 
 /// What the refinement oracle weighs against ε: F·B (Hanrahan et al.'s BF), or ΔF·B + F·ΔB:
@@ -123,8 +126,17 @@ private:
     void index_cluster_links();
     // Clusters (hr_cluster_links.cpp).
     ClusterLink make_cluster_link(NodeRef receiver, NodeRef source) const;
+    /// Casts \p count more rays for \p link (a stream keyed by its ends and the rays it has),
+    /// updating its visibility and distance term.
+    /// Returns false if no ray could be cast (no surface of one end faces the other).
+    bool cast_cluster_rays(ClusterLink& link, int count) const;
+    /// Casts more rays for links all of whose rays were blocked but whose error is above the
+    /// threshold only for that uncertainty. Returns true if any changed.
+    bool resample_occluded(const std::vector<Rgb>& b);
     bool refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     double cluster_link_error(const ClusterLink& link, const std::vector<Rgb>& b) const;
+    /// What the link would bring to a surface facing its source were it unoccluded (W/m²).
+    double open_irradiance(const ClusterLink& link, const std::vector<Rgb>& b) const;
     Vec3 node_centre(NodeRef n) const;
     double node_radius(NodeRef n) const;
     bool splittable(NodeRef n) const;

@@ -17,7 +17,7 @@ namespace penumbra::solver {
 
 namespace {
 
-constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '2'};
+constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '3'};
 
 class Writer {
 public:

@@ -264,7 +264,7 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
 }
 
 bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
-    resample_occluded(b);
+    const bool resampled = resample_occluded(b);
     std::vector<std::uint8_t> decision(cluster_links_.size(), keep);
     parallel_for_index(cluster_links_.size(), 256, [&](std::size_t k) {
         const ClusterLink& l = cluster_links_[k];
@@ -287,7 +287,7 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
             decision[k] = split_source;
     });
     if (std::none_of(decision.begin(), decision.end(), [](std::uint8_t d) { return d != keep; }))
-        return false;
+        return resampled;
     for (std::size_t k = 0; k < cluster_links_.size(); ++k) {
         const ClusterLink& l = cluster_links_[k];
         const NodeRef n = decision[k] == split_receiver ? l.receiver : l.source;

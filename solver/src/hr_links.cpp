@@ -270,7 +270,8 @@ bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range) {
         changed = true;
     while (refine_pass(b, b_range))
         changed = true;
-    sort_and_index();
+    if (changed) // the links are kept sorted and indexed: only changes need it again
+        sort_and_index();
     return changed;
 }
 

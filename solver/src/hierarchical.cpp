@@ -16,6 +16,7 @@
 
 #include "hierarchical.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -80,6 +81,55 @@ Hierarchy reused_hierarchy(const RadiosityMesh& mesh, const HierarchicalState& s
         h.reflectance[n] = p.reflectance;
     }
     return h;
+}
+
+} // namespace
+
+namespace {
+
+// Where each leaf's direct light comes from, for the vertices' gathers (DirectEmitters): the
+// emitting roots that element links reach it or its ancestors from, which its vertices gather
+// exactly, and the direct irradiance that cluster links bring it (emitters seen as part of a
+// cluster), which they take as the leaves' mean.
+struct LeafDirect {
+    std::vector<std::vector<std::uint32_t>> near; ///< per leaf element: emitting roots
+    std::vector<Rgb> far;                         ///< per leaf element, W/m²
+};
+
+LeafDirect leaf_direct(const Hierarchy& h, const LinkSet& links, const Clusters& clusters,
+                       const std::vector<Rgb>& b, const std::vector<std::uint32_t>& leaf_node) {
+    std::vector<std::uint32_t> root_of(h.size());
+    for (std::size_t n = 0; n < h.size(); ++n) // parents precede their children
+        root_of[n] = h.parent[n] < 0 ? std::uint32_t(n) : root_of[std::size_t(h.parent[n])];
+    std::vector<Rgb> cluster_direct(h.size()), unused(h.size());
+    std::vector<Rgb> root_direct;
+    if (clusters.enabled) { // the direct part alone, on a copy of the cluster values
+        ClusterValues cv = clusters.values;
+        gather_cluster_links(h, clusters.tree, links, b, cv, cluster_direct, unused);
+        push_clusters(clusters.tree, h, cv);
+        root_direct = std::move(cv.root_direct);
+    }
+    LeafDirect out;
+    out.near.resize(leaf_node.size());
+    out.far.resize(leaf_node.size());
+    const auto& offsets = links.receiver_offsets();
+    parallel_for_index(leaf_node.size(), 256, [&](std::size_t e) {
+        const std::uint32_t leaf = leaf_node[e];
+        Rgb far = clusters.enabled ? root_direct[root_of[leaf]] : Rgb{};
+        std::vector<std::uint32_t>& near = out.near[e];
+        for (std::int32_t a = std::int32_t(leaf); a >= 0; a = h.parent[std::size_t(a)]) {
+            far += cluster_direct[std::size_t(a)];
+            for (std::uint32_t k = offsets[std::size_t(a)]; k < offsets[std::size_t(a) + 1]; ++k) {
+                const std::uint32_t source = links.links()[k].source;
+                if (!h.emission[source].is_black())
+                    near.push_back(root_of[source]);
+            }
+        }
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+        out.far[e] = far;
+    });
+    return out;
 }
 
 } // namespace
@@ -186,7 +236,9 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     std::vector<Rgb> root_emission(mesh.element_count());
     for (std::size_t e = 0; e < root_emission.size(); ++e)
         root_emission[e] = mesh.patch_of(std::uint32_t(e)).emission;
-    const DirectEmitters emitters{root_geo, direct_sources(scene, root_emission)};
+    const LeafDirect sources = leaf_direct(h, links, clusters, v.b, leaf.element_node);
+    const DirectEmitters emitters{root_geo, direct_sources(scene, root_emission), &sources.near,
+                                  &sources.far};
     result.solution =
         make_solution(scene, leaf.mesh, geo, er, visibility, row_settings, ctx, &emitters);
     ctx.debug("hierarchical: leaf mesh, vertices and sensors {:.2f} s", seconds_since(t0));

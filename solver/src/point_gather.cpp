@@ -62,10 +62,10 @@ double facing_form_factor(const ElementGeometry& geo, const GatherPoint& p, std:
 
 Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
                   const VisibilityQuery& visibility, const GatherPoint& p, int rays_per_source,
-                  std::uint64_t seed) {
+                  std::uint64_t seed, const std::vector<std::uint32_t>* emitters) {
     RgbD sum;
     Pcg32 rng = Pcg32::for_stream(p.purpose, p.id, 1, 0, seed);
-    for (std::uint32_t s : sources.emitters) {
+    for (std::uint32_t s : emitters ? *emitters : sources.emitters) {
         double f = facing_form_factor(geo, p, s);
         if (f <= 0)
             continue;

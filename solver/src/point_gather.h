@@ -31,10 +31,11 @@ struct GatherPoint {
 
 /// \brief Direct irradiance (W/m²) at \p p from the sources. The sun's share,
 ///        irradiance · cos θ · V, takes V from sun_point_visibility with rays from the stream
-///        (sun_visibility, p.id, 2, p.purpose, seed).
+///        (sun_visibility, p.id, 2, p.purpose, seed). \p emitters: the emitting elements
+///        to gather from, if not all of sources.emitters (increasing).
 Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
                   const VisibilityQuery& visibility, const GatherPoint& p, int rays_per_source,
-                  std::uint64_t seed);
+                  std::uint64_t seed, const std::vector<std::uint32_t>* emitters = nullptr);
 
 /// \brief Irradiance (W/m²) at \p p from every element's radiance \p exitance (W/m²),
 ///        excluding nothing; pass reflected radiosity B − E for the indirect part.

@@ -1,5 +1,7 @@
 #include "vertex_values.h"
 
+#include <algorithm>
+
 #include "core/parallel.h"
 
 namespace penumbra::solver {
@@ -64,6 +66,23 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
     const GatherSources& sources = emitters ? emitters->sources : own;
     const ElementGeometry& source_geo = emitters ? emitters->geo : geo;
     const std::size_t nv = mesh.vertex_count();
+    const bool split = emitters && emitters->near && emitters->far;
+    std::vector<Rgb> vertex_far;
+    std::vector<std::uint32_t> first, adjacent; // elements around each vertex (CSR)
+    if (split) {
+        vertex_far = area_weighted_vertex_mean(mesh, *emitters->far);
+        first.assign(nv + 1, 0);
+        for (const auto& t : mesh.triangles)
+            for (std::uint32_t v : t)
+                ++first[v + 1];
+        for (std::size_t v = 0; v < nv; ++v)
+            first[v + 1] += first[v];
+        adjacent.resize(first.back());
+        std::vector<std::uint32_t> at(first.begin(), first.end() - 1);
+        for (std::size_t e = 0; e < mesh.element_count(); ++e)
+            for (std::uint32_t v : mesh.triangles[e])
+                adjacent[at[v]++] = std::uint32_t(e);
+    }
     sol.vertex_irradiance_direct.resize(nv);
     sol.vertex_radiosity.resize(nv);
     ProgressStage progress(ctx, "vertex values");
@@ -75,9 +94,22 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
             const Patch& patch = mesh.patches[mesh.vertex_patch[v]];
             GatherPoint p{mesh.vertex(std::uint32_t(v)), patch.normal, v,
                           RngPurpose::vertex_visibility};
-            sol.vertex_irradiance_direct[v] =
-                gather_direct(source_geo, sources, visibility, p, settings.visibility_rays,
-                              ctx.seed);
+            if (split) {
+                std::vector<std::uint32_t> near;
+                for (std::uint32_t k = first[v]; k < first[v + 1]; ++k) {
+                    const auto& mine = (*emitters->near)[adjacent[k]];
+                    near.insert(near.end(), mine.begin(), mine.end());
+                }
+                std::sort(near.begin(), near.end());
+                near.erase(std::unique(near.begin(), near.end()), near.end());
+                sol.vertex_irradiance_direct[v] =
+                    gather_direct(source_geo, sources, visibility, p, settings.visibility_rays,
+                                  ctx.seed, &near) +
+                    vertex_far[v];
+            } else {
+                sol.vertex_irradiance_direct[v] = gather_direct(
+                    source_geo, sources, visibility, p, settings.visibility_rays, ctx.seed);
+            }
             Rgb h = sol.vertex_irradiance_direct[v] + sol.vertex_irradiance_indirect[v];
             sol.vertex_radiosity[v] = patch.emission + patch.reflectance * h;
         });

@@ -29,9 +29,16 @@ Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& resul
 /// elements: the same surfaces in fewer elements (hierarchical radiosity passes the roots, so
 /// that the rays per vertex do not grow with the emitters' refinement; emission is uniform
 /// over a root, and analytic form factors add up over a partition).
+/// \p near / \p far (optional, per element of the mesh, hierarchical radiosity): a vertex
+/// gathers exactly from the union of its elements' near emitters only (indices into geo, in
+/// increasing order), and adds the area-weighted mean of their far direct irradiance: the
+/// light of emitters that reach the element through cluster links (a vertex would otherwise
+/// gather from every emitter in the scene, which grows with the scene's size squared).
 struct DirectEmitters {
     const ElementGeometry& geo;
     GatherSources sources;
+    const std::vector<std::vector<std::uint32_t>>* near = nullptr;
+    const std::vector<Rgb>* far = nullptr;
 };
 
 Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const ElementGeometry& geo,

@@ -9,6 +9,9 @@
 
 #include "app/pipeline.h"
 #include "office_scene.h"
+#include "point_gather.h"
+#include "raytrace/raytrace.h"
+#include "vertex_values.h"
 #include "common/bake_util.h"
 #include "common/test_util.h"
 
@@ -141,6 +144,59 @@ TEST(Clustering, LinksGrowAboutLinearlyOnOfficeFloors) {
                 (unsigned long long)links[1]);
     EXPECT_GT(double(triangles[1]) / double(triangles[0]), 3.5);
     EXPECT_LE(double(links[1]) / double(links[0]), 5.0);
+}
+
+// An open hall, 16 × 8 × 3 m, lit by a 4 × 2 grid of ceiling panels, with a row of boxes.
+Scene panel_hall() {
+    Scene scene;
+    scene.solver.clustering = "on";
+    scene.solver.epsilon = 3e-2;
+    auto wall = add_material(scene, "wall", Rgb(0.5f));
+    auto panel = add_material(scene, "panel", Rgb(0.0f), Rgb(60.0f), false);
+    test::add_room(scene, {0, 0, 0}, {16, 8, 3}, wall);
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 2; ++j)
+            test::add_rect(scene, "panel", panel, {2.0 + 4.0 * i, 2.0 + 4.0 * j, 2.99},
+                           {0, 0.6, 0}, {0.6, 0, 0});
+    for (int i = 0; i < 3; ++i) {
+        const Vec3 lo(3.5 + 4.0 * i, 3.5, 0), hi(4.5 + 4.0 * i, 4.5, 1.2);
+        test::add_rect(scene, "box_top", wall, {lo.x, lo.y, hi.z}, {1, 0, 0}, {0, 1, 0});
+        test::add_rect(scene, "box_x0", wall, {lo.x, lo.y, 0}, {0, 0, 1.2}, {0, 1, 0});
+        test::add_rect(scene, "box_x1", wall, {hi.x, lo.y, 0}, {0, 1, 0}, {0, 0, 1.2});
+        test::add_rect(scene, "box_y0", wall, {lo.x, lo.y, 0}, {1, 0, 0}, {0, 0, 1.2});
+        test::add_rect(scene, "box_y1", wall, {lo.x, hi.y, 0}, {0, 0, 1.2}, {1, 0, 0});
+    }
+    scene.mesher.max_edge_length = 0.8;
+    return scene;
+}
+
+// A vertex gathers direct light exactly from the emitters that element links bring to its
+// elements, and takes what cluster links bring (the far panels of the hall) as its
+// elements' mean, rather than gathering from every emitter of the scene, which grows as the
+// scene's size squared. Against an exact gather from every emitter at every 5th vertex:
+// relative L1 below 1.5 % at ε = 3e-2 (measured 0.64 %; 2.5 % without the far part).
+TEST(Clustering, VertexDirectLightAgreesWithAGatherFromEveryEmitter) {
+    const Scene scene = panel_hall();
+    const app::BakeResult r = bake(scene);
+    const RadiosityMesh& mesh = r.mesh;
+    raytrace::EmbreeScene rt(mesh);
+    const solver::ElementGeometry geo(mesh);
+    std::vector<Rgb> emission(mesh.element_count());
+    for (std::size_t e = 0; e < emission.size(); ++e)
+        emission[e] = mesh.patch_of(std::uint32_t(e)).emission;
+    const solver::GatherSources every = solver::direct_sources(scene, emission);
+    double difference = 0, total = 0;
+    for (std::uint32_t v = 0; v < mesh.vertex_count(); v += 5) {
+        const solver::GatherPoint p{mesh.vertex(v), mesh.patches[mesh.vertex_patch[v]].normal, v,
+                                    RngPurpose::vertex_visibility};
+        const double exact =
+            solver::gather_direct(geo, every, rt, p, scene.solver.visibility_rays, 0).g;
+        difference += std::abs(double(r.solution.vertex_irradiance_direct[v].g) - exact);
+        total += exact;
+    }
+    std::printf("hall: %zu links, vertex direct light against every emitter: relative L1 %.3g\n",
+                r.stats.links, difference / total);
+    EXPECT_LT(difference / total, 0.015);
 }
 
 } // namespace

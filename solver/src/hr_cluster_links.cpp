@@ -78,27 +78,29 @@ bool LinkSet::splittable(NodeRef n) const {
 }
 
 Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec3& normal) const {
-    Vec3 x;
+    if (!is_cluster(n)) {
+        normal = h_.normal[n];
+        return sample_triangle(h_.triangle[n], rng.next_double(), rng.next_double());
+    }
+    // A root below the cluster, chosen by area, until one faces \p toward (a property of its
+    // plane, so no point is drawn for the others).
+    const std::uint32_t c = cluster_index(n), begin = root_begin_[c], end = root_end_[c];
+    const double lo = dfs_area_[begin], range = dfs_area_[end] - lo;
     for (int attempt = 0; attempt < k_facing_tries; ++attempt) {
-        NodeRef e = n;
-        while (is_cluster(e)) { // a root below the cluster, chosen by area
-            const std::uint32_t c = cluster_index(e);
-            double u = rng.next_double() * tree_->area[c];
-            const std::uint32_t end = tree_->child_begin[c + 1];
-            for (std::uint32_t k = tree_->child_begin[c]; k < end; ++k) {
-                e = tree_->children[k];
-                u -= is_cluster(e) ? tree_->area[cluster_index(e)] : h_.area[e];
-                if (u < 0)
-                    break;
-            }
-        }
-        x = sample_triangle(h_.triangle[e], rng.next_double(), rng.next_double());
+        const double u = lo + rng.next_double() * range;
+        // The first root whose running sum passes u.
+        const auto it =
+            std::upper_bound(dfs_area_.begin() + begin + 1, dfs_area_.begin() + end + 1, u);
+        const auto k = std::size_t(std::clamp<std::ptrdiff_t>(it - dfs_area_.begin() - 1,
+                                                               begin, std::ptrdiff_t(end) - 1));
+        if (dot(toward, dfs_plane_[k].n) <= dfs_plane_[k].d)
+            continue;
+        const std::uint32_t e = dfs_roots_[k];
         normal = h_.normal[e];
-        if (!is_cluster(n) || dot(toward - x, normal) > 0)
-            return x;
+        return sample_triangle(h_.triangle[e], rng.next_double(), rng.next_double());
     }
     normal = Vec3{};
-    return x;
+    return Vec3{};
 }
 
 bool LinkSet::faces_box(std::uint32_t c, NodeRef other) const {
@@ -350,6 +352,29 @@ void LinkSet::attach_clusters(const ClusterTree& tree, const std::vector<Lobes>&
     exitance_ = &exitance;
     peak_ = &peak;
     pull_lobes(tree, h_, std::vector<Rgb>(h_.root_count, Rgb(1.0f)), area_lobes_);
+    dfs_roots_.clear();
+    root_begin_.assign(tree.size(), 0);
+    root_end_.assign(tree.size(), 0);
+    auto visit = [&](auto&& self, std::uint32_t c) -> void {
+        root_begin_[c] = std::uint32_t(dfs_roots_.size());
+        for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
+            const NodeRef child = tree.children[k];
+            if (is_cluster(child))
+                self(self, cluster_index(child));
+            else
+                dfs_roots_.push_back(child);
+        }
+        root_end_[c] = std::uint32_t(dfs_roots_.size());
+    };
+    if (tree.size() > 0)
+        visit(visit, 0);
+    dfs_area_.assign(dfs_roots_.size() + 1, 0.0);
+    dfs_plane_.resize(dfs_roots_.size());
+    for (std::size_t k = 0; k < dfs_roots_.size(); ++k) {
+        const std::uint32_t r = dfs_roots_[k];
+        dfs_area_[k + 1] = dfs_area_[k] + h_.area[r];
+        dfs_plane_[k] = {h_.normal[r], dot(h_.normal[r], h_.triangle[r][0])};
+    }
 }
 
 void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,

@@ -160,6 +160,16 @@ private:
     const std::vector<Lobes>* exitance_ = nullptr;
     const std::vector<float>* peak_ = nullptr;
     std::vector<Lobes> area_lobes_; ///< per cluster: Σ A max(0, ±n_a)
+    /// The roots in depth-first order of the cluster tree, where every cluster is a range
+    /// [root_begin_[c], root_end_[c]), and the running sum of their areas (one longer): a
+    /// root is drawn by area with one binary search.
+    std::vector<std::uint32_t> dfs_roots_, root_begin_, root_end_;
+    std::vector<double> dfs_area_;
+    struct Plane {
+        Vec3 n;
+        double d = 0; ///< n · (a point of the plane)
+    };
+    std::vector<Plane> dfs_plane_; ///< of each root in dfs_roots_, for the facing test
     std::vector<ClusterLink> cluster_links_;
     std::vector<std::uint32_t> cl_elements_, cl_clusters_;
 };

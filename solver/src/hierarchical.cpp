@@ -98,9 +98,7 @@ struct LeafDirect {
 
 LeafDirect leaf_direct(const Hierarchy& h, const LinkSet& links, const Clusters& clusters,
                        const std::vector<Rgb>& b, const std::vector<std::uint32_t>& leaf_node) {
-    std::vector<std::uint32_t> root_of(h.size());
-    for (std::size_t n = 0; n < h.size(); ++n) // parents precede their children
-        root_of[n] = h.parent[n] < 0 ? std::uint32_t(n) : root_of[std::size_t(h.parent[n])];
+    const std::vector<std::uint32_t> root_of = h.root_of_nodes();
     std::vector<Rgb> cluster_direct(h.size()), unused(h.size());
     std::vector<Rgb> root_direct;
     if (clusters.enabled) { // the direct part alone, on a copy of the cluster values
@@ -186,6 +184,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     }
     if (reuse) // the oracle should see the new materials' radiosities
         solve_links(h, links, v, clusters, scene.solver, iteration, emitted, log);
+    const char* passes = iteration == Iteration::shooting ? "shots" : "sweeps";
     for (int cycle = 0; cycle < k_max_cycles; ++cycle) {
         auto t0 = Clock::now();
         const bool changed = links.refine(v.b, v.b_range);
@@ -199,19 +198,18 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
         t0 = Clock::now();
         Solved s = solve_links(h, links, v, clusters, scene.solver, iteration, emitted, log);
         ctx.debug("hierarchical: cycle {}: refine {:.2f} s, leaf weights {:.2f} s, {} {:.2f} s",
-                  cycle, refine_s, weights_s,
-                  iteration == Iteration::shooting ? "shots" : "sweeps", seconds_since(t0));
+                  cycle, refine_s, weights_s, passes, seconds_since(t0));
         if (s.limit_hit)
             ctx.warn("hierarchical: cycle {} stopped at {} {} (solver.{}) with a change of "
                      "{:.3g} of the emitted power, above solver.residual {:.3g}",
-                     cycle, s.sweeps, iteration == Iteration::shooting ? "shots" : "sweeps",
+                     cycle, s.sweeps, passes,
                      iteration == Iteration::shooting ? "max_shots" : "max_sweeps", s.relative,
                      scene.solver.residual);
         ctx.info("hierarchical: cycle {}: {} nodes, {} links ({} element, {} cluster, {} "
                  "light), {} {}, change {:.2e}",
                  cycle, h.size(), links.link_count(), links.links().size(),
-                 links.cluster_links().size(), links.light_links().size(), s.sweeps,
-                 iteration == Iteration::shooting ? "shots" : "sweeps", s.relative);
+                 links.cluster_links().size(), links.light_links().size(), s.sweeps, passes,
+                 s.relative);
         // The number of cycles is not known ahead (refinement stops when the radiosities stop
         // asking for it, usually after 3–6): half the bar for the first, which links and
         // refines the most, and half of what is left for each one after it.

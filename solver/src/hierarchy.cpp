@@ -50,6 +50,13 @@ void Hierarchy::subdivide(std::uint32_t n) {
     }
 }
 
+std::vector<std::uint32_t> Hierarchy::root_of_nodes() const {
+    std::vector<std::uint32_t> root(size());
+    for (std::size_t n = 0; n < size(); ++n) // parents precede their children
+        root[n] = parent[n] < 0 ? std::uint32_t(n) : root[std::size_t(parent[n])];
+    return root;
+}
+
 std::vector<std::uint32_t> Hierarchy::leaves() const {
     std::vector<std::uint32_t> out, stack;
     for (std::size_t r = root_count; r-- > 0;)

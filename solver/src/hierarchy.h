@@ -31,6 +31,8 @@ struct Hierarchy {
     void subdivide(std::uint32_t n);
     /// All leaves in depth-first order of the roots (deterministic).
     std::vector<std::uint32_t> leaves() const;
+    /// The root above every node (its own index for a root).
+    std::vector<std::uint32_t> root_of_nodes() const;
     /// Longest edge of node \p n.
     double size_of(std::uint32_t n) const;
     Vec3 centroid(std::uint32_t n) const {

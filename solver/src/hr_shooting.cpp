@@ -65,11 +65,8 @@ public:
     Shooter(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters)
         : h_(h), links_(links), v_(v), clusters_(clusters),
           by_source_(index_by_source(h, links.links())), trees_(tree_nodes(h)),
-          root_of_(h.size()), unshot_(h.size()), pending_link_(h.size()),
+          root_of_(h.root_of_nodes()), unshot_(h.size()), pending_link_(h.size()),
           pending_even_(h.size()), power_(h.root_count, 0.0), top_(h.root_count) {
-        for (std::size_t r = 0; r < h.root_count; ++r)
-            for (std::uint32_t i = trees_.start[r]; i < trees_.start[r + 1]; ++i)
-                root_of_[trees_.nodes[i]] = std::uint32_t(r);
         if (clusters_.enabled)
             shot_.assign(h.size(), Rgb{});
     }

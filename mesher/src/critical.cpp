@@ -77,8 +77,10 @@ bool parallel(const Vec3& a, const Vec3& b) {
     return length(cross(normalize(a), normalize(b))) < 1e-6;
 }
 
-// All points strictly on one side of the plane (normal m through q), ignoring points on it.
-bool one_side(const Vec3& m, const Vec3& q, const std::vector<Vec3>& points, double eps) {
+// All points strictly on one side of the plane (normal m through q), ignoring points on it
+// (within 1e-9 of the scene's \p diagonal).
+bool one_side(const Vec3& m, const Vec3& q, const std::vector<Vec3>& points, double diagonal) {
+    const double eps = 1e-9 * length(m) * diagonal;
     int sign = 0;
     for (const Vec3& p : points) {
         const double d = dot(m, p - q);
@@ -90,6 +92,19 @@ bool one_side(const Vec3& m, const Vec3& q, const std::vector<Vec3>& points, dou
         sign = s;
     }
     return true;
+}
+
+// An event of \p kind between source \p si (its vertex or edge \p k) and blocker feature
+// \p feature; the caller sets its wedge.
+Event new_event(EventKind kind, std::uint32_t si, std::uint32_t feature, std::size_t k,
+                int order) {
+    Event ev;
+    ev.kind = kind;
+    ev.source = si;
+    ev.feature = feature;
+    ev.source_k = std::uint32_t(k);
+    ev.order = order;
+    return ev;
 }
 
 // Whether some of up to five points on [a, b] sees \p target (skipping \p skip).
@@ -336,15 +351,12 @@ void sun_vertex_edge_events(const Source& src, std::uint32_t si, const FeatureEd
     for (int k = 0; k < count; ++k) {
         const Vec3& d = touching[std::size_t(k)];
         const Vec3 m = cross(b - a, d);
-        if (!one_side(m, a, edge.wings, 1e-9 * length(m) * params.diagonal) ||
+        if (!one_side(m, a, edge.wings, params.diagonal) ||
             !sees_along(bvh, a, b, d, reach, edge.surfaces))
             continue;
-        Event ev;
-        ev.kind = EventKind::vertex_edge;
-        ev.source = si;
-        ev.feature = ei;
-        ev.source_k = std::uint32_t(k);
-        ev.order = src.sin_radius > 0 ? 2 : 0; // a disc's visible part grows as t^3/2
+        // A disc's visible part grows as t^3/2.
+        Event ev = new_event(EventKind::vertex_edge, si, ei, std::size_t(k),
+                             src.sin_radius > 0 ? 2 : 0);
         if (sun_vertex_edge_wedge(ev, d, a, b, reach))
             out.push_back(std::move(ev));
     }
@@ -361,15 +373,10 @@ void sun_edge_vertex_events(const Source& src, std::uint32_t si, const FeatureVe
     for (std::size_t k = 0; k < rim.size(); ++k) {
         const Vec3 &a = rim[k], &b = rim[(k + 1) % rim.size()];
         const Vec3 m = cross(a, b);
-        if (!one_side(m, w, vertex.neighbours, 1e-9 * length(m) * params.diagonal) ||
+        if (!one_side(m, w, vertex.neighbours, params.diagonal) ||
             !sees_chord(bvh, w, a, b, reach, vertex.surfaces))
             continue;
-        Event ev;
-        ev.kind = EventKind::edge_vertex;
-        ev.source = si;
-        ev.feature = vi;
-        ev.source_k = std::uint32_t(k);
-        ev.order = 2;
+        Event ev = new_event(EventKind::edge_vertex, si, vi, k, 2);
         if (edge_vertex_wedge(ev, w, -a, -b, reach))
             out.push_back(std::move(ev));
     }
@@ -384,19 +391,15 @@ void vertex_edge_part_events(const Source& src, std::uint32_t si, const FeatureE
     for (std::size_t k = 0; k < n; ++k) {
         const Vec3& v = src.vertices[k];
         const Vec3 m = cross(a - v, b - v);
-        if (!one_side(m, a, edge.wings, 1e-9 * length(m) * params.diagonal) ||
+        if (!one_side(m, a, edge.wings, params.diagonal) ||
             !sees(bvh, a, b, v, skip))
             continue;
-        Event ev;
-        ev.kind = EventKind::vertex_edge;
-        ev.source = si;
-        ev.feature = ei;
-        ev.source_k = std::uint32_t(k);
-        ev.order = src.surface < 0 ? 0
-                   : (parallel(src.vertices[(k + 1) % n] - v, b - a) ||
-                      parallel(src.vertices[(k + n - 1) % n] - v, b - a))
-                       ? 1
-                       : 2;
+        Event ev = new_event(EventKind::vertex_edge, si, ei, k,
+                             src.surface < 0 ? 0
+                             : (parallel(src.vertices[(k + 1) % n] - v, b - a) ||
+                                parallel(src.vertices[(k + n - 1) % n] - v, b - a))
+                                 ? 1
+                                 : 2);
         if (vertex_edge_wedge(ev, v, a, b, 2 * params.diagonal))
             out.push_back(std::move(ev));
     }
@@ -435,15 +438,10 @@ void edge_vertex_events(const Source& src, std::uint32_t si, const Features& fea
         const Vec3& a = src.vertices[k];
         const Vec3& b = src.vertices[(k + 1) % n];
         const Vec3 m = cross(b - a, w - a);
-        if (!one_side(m, w, vertex.neighbours, 1e-9 * length(m) * params.diagonal) ||
+        if (!one_side(m, w, vertex.neighbours, params.diagonal) ||
             !sees(bvh, a, b, w, skip))
             continue;
-        Event ev;
-        ev.kind = EventKind::edge_vertex;
-        ev.source = si;
-        ev.feature = vi;
-        ev.source_k = std::uint32_t(k);
-        ev.order = 2;
+        Event ev = new_event(EventKind::edge_vertex, si, vi, k, 2);
         for (const Vec3& nb : vertex.neighbours)
             if (length(nb - w) > 0 && parallel(nb - w, b - a))
                 ev.order = 1;

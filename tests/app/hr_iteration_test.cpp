@@ -33,14 +33,21 @@ app::BakeResult bake(Scene scene, const char* iteration, int threads = 0) {
 
 Scene cornell(double max_edge) { return test::cornell_box(max_edge); }
 
+// The Cornell box of 0.15 m elements whose links stay between the roots (ε = 1, no clusters),
+// solved to \p residual.
+Scene cornell_roots(double residual) {
+    Scene scene = cornell(0.15);
+    scene.solver.epsilon = 1.0;
+    scene.solver.clustering = "off";
+    scene.solver.residual = residual;
+    return scene;
+}
+
 // ε = 1: the links between the roots are never refined, so every iteration solves exactly the
 // same system; converged to 1e-8 they agree to 1e-4 (the tolerance for methods on the
 // same elements), here far closer.
 TEST(HierarchicalIterations, AgreeOnTheSameLinks) {
-    Scene scene = cornell(0.15);
-    scene.solver.epsilon = 1.0;
-    scene.solver.clustering = "off";
-    scene.solver.residual = 1e-8;
+    const Scene scene = cornell_roots(1e-8);
     const app::BakeResult jacobi = bake(scene, "jacobi");
     ASSERT_GT(jacobi.mesh.element_count(), 300u);
     for (const char* iteration : {"gauss_seidel", "shooting"}) {
@@ -145,10 +152,7 @@ TEST(HierarchicalIterations, IdenticalFor1And2And4Threads) {
 // Gauss–Seidel takes fewer sweeps than Jacobi to the same residual (it uses this sweep's
 // radiosities where they are ready): the reason to offer it.
 TEST(HierarchicalIterations, GaussSeidelNeedsFewerSweeps) {
-    Scene scene = cornell(0.15);
-    scene.solver.epsilon = 1.0;
-    scene.solver.clustering = "off";
-    scene.solver.residual = 1e-6;
+    const Scene scene = cornell_roots(1e-6);
     const app::BakeResult jacobi = bake(scene, "jacobi");
     const app::BakeResult gs = bake(scene, "gauss_seidel");
     EXPECT_LT(double(gs.stats.shots), 0.8 * double(jacobi.stats.shots))
@@ -159,11 +163,8 @@ TEST(HierarchicalIterations, GaussSeidelNeedsFewerSweeps) {
 // final solution (area-weighted L1) falls from snapshot to snapshot, and the first already
 // holds the direct light (error < 50 %).
 TEST(HierarchicalIterations, ShootingShowsAnEarlyImage) {
-    Scene scene = cornell(0.15);
-    scene.solver.epsilon = 1.0; // the roots are the elements the snapshots are on
-    scene.solver.clustering = "off";
+    Scene scene = cornell_roots(1e-6); // the roots are the elements the snapshots are on
     scene.solver.iteration = "shooting";
-    scene.solver.residual = 1e-6;
     const Context ctx = test::quiet_context(0);
     const RadiosityMesh mesh = mesher::build_mesh(scene, ctx);
     raytrace::EmbreeScene rt(mesh);

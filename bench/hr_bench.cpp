@@ -11,12 +11,14 @@
 // Columns: input triangles, elements (both sides: the hierarchy's roots), leaf-mesh elements
 // (leaves made conforming), links, peak RSS, seconds per stage, rays the solve traced, the
 // mean rays per visibility call, the solve's rays per second of wall time, the raw rays per
-// second, their ratio, and the share of the solve's thread time spent inside visibility calls.
+// second, their ratio, the share of the solve's thread time spent inside visibility calls, and
+// the power balance: (absorbed + escaped) / emitted − 1 in percent (0 for exact transport).
 // The peak RSS is read before the raw measurement; it includes the input mesh and its BVH
 // during the output stage, which the CLI has freed by then.
 //
 // Usage: hr_bench [--sizes 1k,2k,8k,32k] [--max-seconds S] [--threads N] [--epsilon E]
-//                 [--clustering auto|on|off] [--raw-rays N] [--no-solve] [-v]
+//                 [--clustering auto|on|off] [--offices NXxNY] [--tessellation K]
+//                 [--raw-rays N] [--no-solve] [-v]
 
 #include "app/pipeline.h"
 #include "core/error.h"
@@ -63,6 +65,8 @@ struct Options {
     int threads = 0;
     double epsilon = 0;
     std::string clustering; ///< empty: the scene's (auto)
+    std::string offices;    ///< "NXxNY": this many offices instead of the size's
+    int tessellation = 0;   ///< > 0: this tessellation instead of the size's
     std::int64_t raw_rays = 1'000'000;
     bool no_solve = false;
     bool verbose = false;
@@ -160,6 +164,7 @@ struct Row {
     std::uint64_t links = 0, rays = 0, calls = 0;
     double peak_mib = 0, mesh_s = 0, bvh_s = 0, solve_s = 0, output_s = 0;
     double raw_rays_s = 0, in_visibility = 0;
+    double power_error = 0; ///< (absorbed + escaped) / emitted − 1, summed over the channels
     bool solved = false; ///< false with --no-solve: no solve and output stages
 };
 
@@ -173,9 +178,25 @@ void write_outputs(const Scene& scene, app::BakeResult& result, const Context& c
     std::filesystem::remove_all(dir);
 }
 
+/// "NXxNY" into \p p's rooms_x and rooms_y, or a one-line error.
+void parse_offices(const std::string& text, bench::OfficeParams& p) {
+    int nx = 0, ny = 0;
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%dx%d%c", &nx, &ny, &tail) != 2 || nx < 1 || ny < 1 ||
+        nx > 1000 || ny > 1000)
+        throw std::runtime_error("--offices: expected NXxNY with 1 ≤ NX, NY ≤ 1000, got '" +
+                                 text + "'");
+    p.rooms_x = nx;
+    p.rooms_y = ny;
+}
+
 Row run_size(std::int64_t target, const Options& options, const Context& ctx) {
     Row row;
     row.params = bench::office_params_for_triangles(target);
+    if (!options.offices.empty())
+        parse_offices(options.offices, row.params);
+    if (options.tessellation > 0)
+        row.params.tessellation = options.tessellation;
     Scene scene = bench::office_floor(row.params);
     bench::mesh_input_as_is(scene);
     if (options.epsilon > 0)
@@ -209,6 +230,10 @@ Row run_size(std::int64_t target, const Options& options, const Context& ctx) {
         row.in_visibility = visibility_seconds / (row.solve_s * thread_count(ctx));
         stage(row.output_s, "output", [&] { write_outputs(scene, result, ctx); });
         row.solved = true;
+        const solver::PowerBalance& pb = result.stats.power;
+        const double emitted = pb.emitted.r + pb.emitted.g + pb.emitted.b;
+        row.power_error = (pb.absorbed.r + pb.absorbed.g + pb.absorbed.b + pb.escaped.r +
+                           pb.escaped.g + pb.escaped.b) / emitted - 1.0;
     }
     row.elements = mesh.element_count();
     row.leaves = result.mesh.element_count();
@@ -221,10 +246,10 @@ Row run_size(std::int64_t target, const Options& options, const Context& ctx) {
 
 void print_header() {
     fmt::print("{:<6} {:>7} {:>3} {:>9} {:>9} {:>9} {:>10} {:>8} {:>7} {:>7} {:>8} {:>8} {:>11} "
-               "{:>6} {:>8} {:>8} {:>6} {:>5}\n",
+               "{:>6} {:>8} {:>8} {:>6} {:>5} {:>6}\n",
                "size", "offices", "k", "input_tri", "elements", "leaves", "links", "peak_MiB",
                "mesh_s", "bvh_s", "solve_s", "output_s", "rays", "batch", "Mray/s", "raw_Mr/s",
-               "ratio", "vis%");
+               "ratio", "vis%", "power%");
     std::fflush(stdout);
 }
 
@@ -236,7 +261,7 @@ void print_row(const std::string& size, const Row& r) {
                      : fmt::format("{:>{}}", "-", width);
     };
     const double rays_s = double(r.rays) / r.solve_s;
-    fmt::print("{:<6} {:>7} {:>3} {:>9} {:>9} {} {} {} {} {} {} {} {} {} {} {} {} {}\n", size,
+    fmt::print("{:<6} {:>7} {:>3} {:>9} {:>9} {} {} {} {} {} {} {} {} {} {} {} {} {} {}\n", size,
                fmt::format("{}x{}", r.params.rooms_x, r.params.rooms_y), r.params.tessellation,
                r.triangles, r.elements, num(s, double(r.leaves), 9, 0),
                num(s, double(r.links), 10, 0), num(true, r.peak_mib, 8, 0),
@@ -244,7 +269,7 @@ void print_row(const std::string& size, const Row& r) {
                num(s, r.output_s, 8, 2), num(s, double(r.rays), 11, 0),
                num(s, double(r.rays) / double(r.calls), 6, 1), num(s, rays_s * 1e-6, 8, 2),
                num(true, r.raw_rays_s * 1e-6, 8, 2), num(s, rays_s / r.raw_rays_s, 6, 3),
-               num(s, 100.0 * r.in_visibility, 5, 1));
+               num(s, 100.0 * r.in_visibility, 5, 1), num(s, 100.0 * r.power_error, 6, 2));
     std::fflush(stdout);
 }
 
@@ -266,6 +291,10 @@ void run_in_child(const std::string& size, const Options& options) {
         args.insert(args.end(), {"--epsilon", std::to_string(options.epsilon)});
     if (!options.clustering.empty())
         args.insert(args.end(), {"--clustering", options.clustering});
+    if (!options.offices.empty())
+        args.insert(args.end(), {"--offices", options.offices});
+    if (options.tessellation > 0)
+        args.insert(args.end(), {"--tessellation", std::to_string(options.tessellation)});
     if (options.no_solve)
         args.push_back("--no-solve");
     if (options.verbose)
@@ -294,6 +323,11 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     cli.add_option("--clustering", o.clustering, "solver.clustering (default: the scene's, auto)")
         ->check(CLI::IsMember({"auto", "on", "off"}));
+    cli.add_option("--offices", o.offices,
+                   "NXxNY offices (e.g. 2x1) instead of the size's; the size then only names the row");
+    cli.add_option("--tessellation", o.tessellation,
+                   "split every rectangle k x k (2k^2 triangles) instead of the size's k")
+        ->check(CLI::Range(1, 64));
     cli.add_option("--raw-rays", o.raw_rays, "segments for the raw throughput")
         ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 32));
     cli.add_flag("--no-solve", o.no_solve,
@@ -306,6 +340,10 @@ int main(int argc, char** argv) {
             return run_child(o);
         for (const std::string& size : o.sizes)
             parse_size(size); // reject a bad list before the first run
+        if (!o.offices.empty()) {
+            bench::OfficeParams check;
+            parse_offices(o.offices, check);
+        }
         print_header();
         for (const std::string& size : o.sizes)
             run_in_child(size, o);

@@ -32,6 +32,8 @@ constexpr int k_max_cluster_rays = 256;
 /// Such a link gets rays until its uncertainty is this many times below the threshold: a link
 /// taken as occluded loses what light it carries, always in the same direction.
 constexpr double k_resample_margin = 16.0;
+/// Source ends are drawn by area × (radiosity + this × the brightest root's radiosity).
+constexpr double k_exitance_floor = 1e-3;
 
 // The part of the open irradiance a link's visibility may be off by: all of it where the rays
 // disagree; where all n were blocked, 1/n (n blocked rays cannot tell 0 from about 1/n).
@@ -77,21 +79,23 @@ bool LinkSet::splittable(NodeRef n) const {
     return is_cluster(n) || !h_.is_leaf(n) || h_.area[n] > settings_.min_area;
 }
 
-Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec3& normal) const {
+Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec3& normal,
+                                  const std::vector<double>& running) const {
     if (!is_cluster(n)) {
         normal = h_.normal[n];
         return sample_triangle(h_.triangle[n], rng.next_double(), rng.next_double());
     }
-    // A root below the cluster, chosen by area, until one faces \p toward (a property of its
-    // plane, so no point is drawn for the others).
+    // A root below the cluster, chosen by its weight in \p running (a running sum over the
+    // roots in depth-first order), until one faces \p toward (a property of its plane, so no
+    // point is drawn for the others).
     const std::uint32_t c = cluster_index(n), begin = root_begin_[c], end = root_end_[c];
-    const double lo = dfs_area_[begin], range = dfs_area_[end] - lo;
+    const double lo = running[begin], range = running[end] - lo;
     for (int attempt = 0; attempt < k_facing_tries; ++attempt) {
         const double u = lo + rng.next_double() * range;
         // The first root whose running sum passes u.
         const auto it =
-            std::upper_bound(dfs_area_.begin() + begin + 1, dfs_area_.begin() + end + 1, u);
-        const auto k = std::size_t(std::clamp<std::ptrdiff_t>(it - dfs_area_.begin() - 1,
+            std::upper_bound(running.begin() + begin + 1, running.begin() + end + 1, u);
+        const auto k = std::size_t(std::clamp<std::ptrdiff_t>(it - running.begin() - 1,
                                                                begin, std::ptrdiff_t(end) - 1));
         if (dot(toward, dfs_plane_[k].n) <= dfs_plane_[k].d)
             continue;
@@ -174,8 +178,8 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     std::vector<double> kernel;
     for (int k = 0; k < count; ++k) {
         Vec3 nq, np;
-        const Vec3 xq = sample_facing_point(q, cp, rng, nq);
-        const Vec3 xp = sample_facing_point(p, cq, rng, np);
+        const Vec3 xq = sample_facing_point(q, cp, rng, nq, dfs_area_);
+        const Vec3 xp = sample_facing_point(p, cq, rng, np, dfs_exitance_);
         if (nq == Vec3{} || np == Vec3{})
             continue; // no surface of a cluster faces the other end
         const Vec3 from = xq + nq * settings_.offset, to = xp + np * settings_.offset;
@@ -255,12 +259,13 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
         if (l.self || l.v > 0 || l.rays == 0 || l.rays >= k_max_cluster_rays)
             return;
         const double open = open_irradiance(l, b);
-        if (open / double(l.rays) <= threshold)
+        if (open / double(l.rays) <= threshold / k_resample_margin)
             return;
         const double wanted = std::min(double(k_max_cluster_rays),
                                        std::ceil(k_resample_margin * open / threshold));
+        const std::uint16_t before = l.rays;
         cast_cluster_rays(l, int(wanted) - int(l.rays));
-        changed[k] = 1;
+        changed[k] = l.rays > before; // no end faced the other: nothing to add
     });
     return std::any_of(changed.begin(), changed.end(), [](std::uint8_t c) { return c != 0; });
 }
@@ -346,6 +351,24 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
     return true;
 }
 
+// A source end is drawn by exitance (area × radiosity), so that the rays' visible fraction is
+// that of the light it sends: dark parts of a cluster are the occluded ones more often than
+// not (under desks, in corners), and drawing by area made cluster links carry too little.
+// The floor keeps the parts of a cluster without radiosity yet (reflectors before the first
+// solve) drawn by area.
+void LinkSet::weigh_sources(const std::vector<Rgb>& b) {
+    double peak = 0;
+    for (std::uint32_t r : dfs_roots_)
+        peak = std::max(peak, double(b[r].max_component()));
+    const double floor = peak > 0 ? k_exitance_floor * peak : 1.0; // no light: by area
+    dfs_exitance_.assign(dfs_roots_.size() + 1, 0.0);
+    for (std::size_t k = 0; k < dfs_roots_.size(); ++k) {
+        const std::uint32_t r = dfs_roots_[k];
+        dfs_exitance_[k + 1] =
+            dfs_exitance_[k] + h_.area[r] * (double(b[r].max_component()) + floor);
+    }
+}
+
 void LinkSet::attach_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
                               const std::vector<float>& peak) {
     tree_ = &tree;
@@ -375,6 +398,7 @@ void LinkSet::attach_clusters(const ClusterTree& tree, const std::vector<Lobes>&
         dfs_area_[k + 1] = dfs_area_[k] + h_.area[r];
         dfs_plane_[k] = {h_.normal[r], dot(h_.normal[r], h_.triangle[r][0])};
     }
+    dfs_exitance_ = dfs_area_; // until refine() weighs the sources by their radiosity
 }
 
 void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,

@@ -266,6 +266,8 @@ bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range) {
     bool changed = false;
     while (refine_light_pass(b, b_range))
         changed = true;
+    if (tree_)
+        weigh_sources(b);
     while (tree_ && refine_cluster_pass(b, b_range))
         changed = true;
     while (refine_pass(b, b_range))

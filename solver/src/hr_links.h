@@ -58,8 +58,8 @@ struct RefineSettings {
     /// W/m² (largest channel): refine links whose F·B (the irradiance they bring) exceeds it.
     double threshold = 0;
     /// W/m²: the same for cluster links, whose point approximation may be off by a factor
-    /// where a small bright source lights a large cluster: ε × the mean irradiance (emitted
-    /// power over the total area) rather than ε × the brightest exitance.
+    /// where a small bright source lights a large cluster: a multiple of ε × the mean
+    /// irradiance (emitted power over the total area) rather than ε × the brightest exitance.
     double cluster_threshold = 0;
     double min_area = 0;        ///< m²
     RowSettings rows;
@@ -132,6 +132,7 @@ private:
     bool cast_cluster_rays(ClusterLink& link, int count) const;
     /// Casts more rays for links all of whose rays were blocked but whose error is above the
     /// threshold only for that uncertainty. Returns true if any changed.
+    void weigh_sources(const std::vector<Rgb>& b);
     bool resample_occluded(const std::vector<Rgb>& b);
     bool refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     double cluster_link_error(const ClusterLink& link, const std::vector<Rgb>& b) const;
@@ -143,7 +144,8 @@ private:
     /// Some surface of cluster \p c may face some point of \p other (by its axis lobes and
     /// the bounding boxes: conservative).
     bool faces_box(std::uint32_t c, NodeRef other) const;
-    Vec3 sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec3& normal) const;
+    Vec3 sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec3& normal,
+                             const std::vector<double>& running) const;
     template <typename Fn>
     void for_each_child(NodeRef n, Fn&& fn) const;
 
@@ -165,6 +167,8 @@ private:
     /// root is drawn by area with one binary search.
     std::vector<std::uint32_t> dfs_roots_, root_begin_, root_end_;
     std::vector<double> dfs_area_;
+    /// The same running sum of area × radiosity (with a floor): source ends are drawn by it.
+    std::vector<double> dfs_exitance_;
     struct Plane {
         Vec3 n;
         double d = 0; ///< n · (a point of the plane)

@@ -43,13 +43,6 @@ double seconds_since(Clock::time_point t0) {
 }
 /// solver.clustering "auto" clusters meshes with more elements than this.
 constexpr std::size_t k_clustering_auto_roots = 3000;
-/// Cluster links are refined against this × ε × the mean irradiance (emitted power over the
-/// total area). Calibrated once their transport was unbiased (source ends drawn by exitance,
-/// all-blocked links given rays down to 1/16 of the threshold): on a 2-office floor of
-/// 18 200 elements (tessellation 5) the power balance is −0.33 % at 1×, −0.23 % at 10× and
-/// −1.2 % at 30×, with 8.7 M, 3.2 M and 1.8 M links; the lamp-room and open-hall tests give
-/// the same accuracy at 10× for the same links or fewer.
-constexpr double k_cluster_threshold_scale = 10.0;
 
 double emitted_power_max(const Hierarchy& h, const std::vector<PointLight>& lights) {
     double total = 0;
@@ -182,8 +175,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     links.set_threshold(scene.solver.epsilon * radiosity_scale(h, links));
     emitted += links.sun_power().max_component(); // what the sun's direct light delivers
     if (clusters.enabled)
-        links.set_cluster_threshold(k_cluster_threshold_scale * scene.solver.epsilon * emitted /
-                                    clusters.tree.area[0]);
+        links.set_cluster_threshold(scene.solver.epsilon * emitted / clusters.tree.area[0]);
     SweepLog log{mesh, observer, stats};
     const Iteration iteration = parse_iteration(scene.solver.iteration);
     if (reuse && !reuse->weights.empty()) { // of the same links: geometry only

@@ -58,8 +58,8 @@ struct RefineSettings {
     /// W/m² (largest channel): refine links whose F·B (the irradiance they bring) exceeds it.
     double threshold = 0;
     /// W/m²: the same for cluster links, whose point approximation may be off by a factor
-    /// where a small bright source lights a large cluster: a multiple of ε × the mean
-    /// irradiance (emitted power over the total area) rather than ε × the brightest exitance.
+    /// where a small bright source lights a large cluster: ε × the mean irradiance (emitted
+    /// power over the total area) rather than ε × the brightest exitance.
     double cluster_threshold = 0;
     double min_area = 0;        ///< m²
     RowSettings rows;

@@ -100,7 +100,7 @@ TEST(Clustering, IdenticalFor1And2And4Threads) {
 // Two such rooms side by side, each sealed by its own walls 0.2 m apart: every ray between
 // them is blocked, and the second room must cost about the links of the first, not a
 // cascade of cluster links split level after level because four blocked rays cannot prove
-// the pair dark (they get more rays instead; measured 2.05 times one room's links, 2.22
+// the pair dark (they get more rays instead; measured 2.06 times one room's links, 2.22
 // before). Each room keeps its own light: the sensors of
 // the second equal the first's.
 TEST(Clustering, SealedNeighbourAddsAboutItsOwnLinks) {
@@ -150,7 +150,7 @@ TEST(Clustering, LinksGrowAboutLinearlyOnOfficeFloors) {
 Scene panel_hall() {
     Scene scene;
     scene.solver.clustering = "on";
-    scene.solver.epsilon = 3e-3;
+    scene.solver.epsilon = 3e-2;
     auto wall = add_material(scene, "wall", Rgb(0.5f));
     auto panel = add_material(scene, "panel", Rgb(0.0f), Rgb(60.0f), false);
     test::add_room(scene, {0, 0, 0}, {16, 8, 3}, wall);
@@ -174,7 +174,7 @@ Scene panel_hall() {
 // elements, and takes what cluster links bring (the far panels of the hall) as its
 // elements' mean, rather than gathering from every emitter of the scene, which grows as the
 // scene's size squared. Against an exact gather from every emitter at every 5th vertex:
-// relative L1 below 1.5 % at ε = 3e-3 (measured 0.62 % with 0.89 M links, 1.6 % at 1e-2).
+// relative L1 below 1.5 % at ε = 3e-2 (measured 0.61 %; 2.5 % without the far part).
 TEST(Clustering, VertexDirectLightAgreesWithAGatherFromEveryEmitter) {
     const Scene scene = panel_hall();
     const app::BakeResult r = bake(scene);

@@ -6,6 +6,8 @@
 #include "common/test_util.h"
 #include "core/error.h"
 
+#include <sys/stat.h>
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -48,6 +50,7 @@ std::string socket_of(const std::string& display) {
 TEST(VirtualDisplay, SetsDisplayAndCleansUp) {
     ScopedEnv no_display("DISPLAY", nullptr);
     std::string socket;
+    struct stat ours {};
     {
         VirtualDisplay display(640, 480);
         ASSERT_EQ(display.display().rfind(':', 0), 0u) << display.display();
@@ -55,9 +58,15 @@ TEST(VirtualDisplay, SetsDisplayAndCleansUp) {
         EXPECT_EQ(std::string(std::getenv("DISPLAY")), display.display());
         socket = socket_of(display.display());
         EXPECT_TRUE(fs::exists(socket)) << socket;
+        ASSERT_EQ(0, ::stat(socket.c_str(), &ours)) << socket;
     }
     EXPECT_FALSE(has_display());
-    EXPECT_FALSE(fs::exists(socket)) << "Xvfb still running: " << socket;
+    // Gone, or another test's server (ctest -j) has taken the freed number since: a new file.
+    struct stat now {};
+    const bool same = ::stat(socket.c_str(), &now) == 0 && now.st_ino == ours.st_ino &&
+                      now.st_ctim.tv_sec == ours.st_ctim.tv_sec &&
+                      now.st_ctim.tv_nsec == ours.st_ctim.tv_nsec;
+    EXPECT_FALSE(same) << "Xvfb still running: " << socket;
 }
 
 TEST(VirtualDisplay, TwoAtOnceGetDifferentNumbersAndRestoreDisplay) {

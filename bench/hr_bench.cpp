@@ -48,6 +48,7 @@
 #include <span>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -178,23 +179,22 @@ void write_outputs(const Scene& scene, app::BakeResult& result, const Context& c
     std::filesystem::remove_all(dir);
 }
 
-/// "NXxNY" into \p p's rooms_x and rooms_y, or a one-line error.
-void parse_offices(const std::string& text, bench::OfficeParams& p) {
+/// "NXxNY" as {NX, NY}, or a one-line error.
+std::pair<int, int> parse_offices(const std::string& text) {
     int nx = 0, ny = 0;
     char tail = 0;
     if (std::sscanf(text.c_str(), "%dx%d%c", &nx, &ny, &tail) != 2 || nx < 1 || ny < 1 ||
         nx > 1000 || ny > 1000)
         throw std::runtime_error("--offices: expected NXxNY with 1 ≤ NX, NY ≤ 1000, got '" +
                                  text + "'");
-    p.rooms_x = nx;
-    p.rooms_y = ny;
+    return {nx, ny};
 }
 
 Row run_size(std::int64_t target, const Options& options, const Context& ctx) {
     Row row;
     row.params = bench::office_params_for_triangles(target);
     if (!options.offices.empty())
-        parse_offices(options.offices, row.params);
+        std::tie(row.params.rooms_x, row.params.rooms_y) = parse_offices(options.offices);
     if (options.tessellation > 0)
         row.params.tessellation = options.tessellation;
     Scene scene = bench::office_floor(row.params);
@@ -231,9 +231,7 @@ Row run_size(std::int64_t target, const Options& options, const Context& ctx) {
         stage(row.output_s, "output", [&] { write_outputs(scene, result, ctx); });
         row.solved = true;
         const solver::PowerBalance& pb = result.stats.power;
-        const double emitted = pb.emitted.r + pb.emitted.g + pb.emitted.b;
-        row.power_error = (pb.absorbed.r + pb.absorbed.g + pb.absorbed.b + pb.escaped.r +
-                           pb.escaped.g + pb.escaped.b) / emitted - 1.0;
+        row.power_error = (pb.absorbed.sum() + pb.escaped.sum()) / pb.emitted.sum() - 1.0;
     }
     row.elements = mesh.element_count();
     row.leaves = result.mesh.element_count();
@@ -340,10 +338,8 @@ int main(int argc, char** argv) {
             return run_child(o);
         for (const std::string& size : o.sizes)
             parse_size(size); // reject a bad list before the first run
-        if (!o.offices.empty()) {
-            bench::OfficeParams check;
-            parse_offices(o.offices, check);
-        }
+        if (!o.offices.empty())
+            parse_offices(o.offices); // as the sizes: a bad value fails before the first run
         print_header();
         for (const std::string& size : o.sizes)
             run_in_child(size, o);

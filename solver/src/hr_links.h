@@ -130,9 +130,10 @@ private:
     /// updating its visibility and distance term.
     /// Returns false if no ray could be cast (no surface of one end faces the other).
     bool cast_cluster_rays(ClusterLink& link, int count) const;
+    /// Rebuilds dfs_exitance_ from the roots' radiosities \p b.
+    void weigh_sources(const std::vector<Rgb>& b);
     /// Casts more rays for links all of whose rays were blocked but whose error is above the
     /// threshold only for that uncertainty. Returns true if any changed.
-    void weigh_sources(const std::vector<Rgb>& b);
     bool resample_occluded(const std::vector<Rgb>& b);
     bool refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     double cluster_link_error(const ClusterLink& link, const std::vector<Rgb>& b) const;

@@ -23,11 +23,15 @@ namespace {
 
 constexpr int k_probe_count = 64;
 
+// Steepest first: a probe stops at the first direction that meets a front side, and the
+// steep ones meet the ceiling or a desk above an open region at once, where grazing ones
+// may run across a whole floor plate first (a cost that grows as √n per probe). The set, so
+// the outcome, does not depend on the order.
 std::vector<Vec3> probe_directions() {
     std::vector<Vec3> dirs;
     const double golden = k_pi * (3.0 - std::sqrt(5.0));
     const double z_min = std::sin(5.0 * k_pi / 180.0);
-    for (int i = 0; i < k_probe_count; ++i) {
+    for (int i = k_probe_count; i-- > 0;) {
         const double z = z_min + (1.0 - z_min) * (double(i) + 0.5) / k_probe_count;
         const double r = std::sqrt(1.0 - z * z), phi = golden * i;
         dirs.emplace_back(r * std::cos(phi), r * std::sin(phi), z);

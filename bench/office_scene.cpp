@@ -180,7 +180,8 @@ Scene office_floor(const OfficeParams& params) {
     Scene s;
     s.name = "office";
     s.materials = {{"wall", Rgb(0.7f)}, {"desk", Rgb(0.4f)}, {"panel", Rgb(0.0f), Rgb(30.0f)}};
-    s.materials[k_panel].two_sided = false;
+    // The panel keeps its back side (the default): black, it absorbs what light reaches the
+    // 1 cm gap above it, which a one-sided panel would lose from the power balance.
     FloorBuilder b(s, params.tessellation);
     add_shell(b, params);
     for (int i = 0; i < params.rooms_x; ++i)

@@ -266,6 +266,8 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
         const std::uint16_t before = l.rays;
         cast_cluster_rays(l, int(wanted) - int(l.rays));
         changed[k] = l.rays > before; // no end faced the other: nothing to add
+        if (changed[k])
+            cluster_kept_[k] = 0; // weighed anew
     });
     return std::any_of(changed.begin(), changed.end(), [](std::uint8_t c) { return c != 0; });
 }
@@ -275,7 +277,7 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
     std::vector<std::uint8_t> decision(cluster_links_.size(), keep);
     parallel_for_index(cluster_links_.size(), 256, [&](std::size_t k) {
         const ClusterLink& l = cluster_links_[k];
-        if (cluster_link_error(l, b) <= settings_.cluster_threshold)
+        if (cluster_kept_[k] || cluster_link_error(l, b) <= settings_.cluster_threshold)
             return;
         if (l.self) {
             decision[k] = split_self;
@@ -293,8 +295,10 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         else if (sp)
             decision[k] = split_source;
     });
-    if (std::none_of(decision.begin(), decision.end(), [](std::uint8_t d) { return d != keep; }))
+    if (std::none_of(decision.begin(), decision.end(), [](std::uint8_t d) { return d != keep; })) {
+        cluster_kept_.assign(cluster_links_.size(), 1);
         return resampled;
+    }
     for (std::size_t k = 0; k < cluster_links_.size(); ++k) {
         const ClusterLink& l = cluster_links_[k];
         const NodeRef n = decision[k] == split_receiver ? l.receiver : l.source;
@@ -302,6 +306,7 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
             subdivide(n, b, b_range);
     }
     std::vector<ClusterLink> next;
+    std::vector<std::uint8_t> next_kept;
     std::vector<std::pair<NodeRef, NodeRef>> cluster_pairs, element_pairs;
     auto add_pair = [&](NodeRef q, NodeRef p) {
         if (is_cluster(q) || is_cluster(p))
@@ -314,6 +319,7 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         switch (decision[k]) {
         case keep:
             next.push_back(l);
+            next_kept.push_back(1);
             break;
         case split_self:
             for_each_child(l.receiver, [&](NodeRef i) {
@@ -338,9 +344,12 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         made[i] = make_cluster_link(cluster_pairs[i].first, cluster_pairs[i].second);
     });
     for (const ClusterLink& l : made)
-        if (l.self || l.g > 0)
+        if (l.self || l.g > 0) {
             next.push_back(l);
+            next_kept.push_back(0);
+        }
     cluster_links_.swap(next);
+    cluster_kept_.swap(next_kept);
     std::vector<Link> element_links(element_pairs.size());
     parallel_for_index(element_pairs.size(), 16, [&](std::size_t i) {
         element_links[i] = make_link(element_pairs[i].first, element_pairs[i].second);

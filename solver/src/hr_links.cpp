@@ -173,8 +173,11 @@ void LinkSet::subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<flo
 }
 
 bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
+    kept_.resize(links_.size(), 0); // links cluster refinement added are new
     std::vector<std::uint8_t> decision(links_.size(), keep);
     parallel_for_index(links_.size(), 256, [&](std::size_t k) {
+        if (kept_[k])
+            return;
         const Link& link = links_[k];
         // Hanrahan et al.'s BF oracle: the irradiance the link brings, doubled when partly
         // occluded (its visibility estimate is the least certain part).
@@ -191,8 +194,10 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
             return;
         decision[k] = aq >= ap ? split_receiver : split_source;
     });
-    if (std::none_of(decision.begin(), decision.end(), [](std::uint8_t d) { return d != keep; }))
+    if (std::none_of(decision.begin(), decision.end(), [](std::uint8_t d) { return d != keep; })) {
+        kept_.assign(links_.size(), 1);
         return false;
+    }
     for (std::size_t k = 0; k < links_.size(); ++k)
         if (decision[k] != keep)
             subdivide(decision[k] == split_receiver ? links_[k].receiver : links_[k].source, b,
@@ -218,9 +223,17 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         if (faces(h_, l.receiver, l.source, 1e-9 * h_.diagonal))
             l = make_link(l.receiver, l.source);
     });
-    next.erase(std::remove_if(next.begin(), next.end(), [](const Link& l) { return l.ff <= 0; }),
-               next.end());
-    links_.swap(next);
+    // Drop the new links that carry nothing; the kept ones (all ff > 0) stay marked.
+    std::vector<std::uint8_t> is_new(next.size(), 0);
+    for (std::size_t f : fresh)
+        is_new[f] = 1;
+    links_.clear();
+    kept_.clear();
+    for (std::size_t k = 0; k < next.size(); ++k)
+        if (next[k].ff > 0) {
+            links_.push_back(next[k]);
+            kept_.push_back(is_new[k] ? 0 : 1);
+        }
     return true;
 }
 
@@ -263,6 +276,8 @@ bool LinkSet::refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range
 }
 
 bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range) {
+    kept_.assign(links_.size(), 0); // radiosities have changed since the last refine()
+    cluster_kept_.assign(cluster_links_.size(), 0);
     bool changed = false;
     while (refine_light_pass(b, b_range))
         changed = true;

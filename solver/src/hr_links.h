@@ -177,6 +177,11 @@ private:
     std::vector<Plane> dfs_plane_; ///< of each root in dfs_roots_, for the facing test
     std::vector<ClusterLink> cluster_links_;
     std::vector<std::uint32_t> cl_elements_, cl_clusters_;
+    /// Within one refine(), per link: its oracle already said keep. Radiosities do not change
+    /// during refine() and new nodes take their parent's values, so it would say keep again:
+    /// each pass weighs only the links made by the one before (same decisions, a fraction of
+    /// the work; a refine() takes about as many passes as the hierarchies are deep).
+    std::vector<std::uint8_t> kept_, cluster_kept_;
 };
 
 } // namespace penumbra::solver

@@ -5,9 +5,11 @@
 // error exceeds the threshold, at the cluster end of a cluster–element link, else at the
 // larger end. Pairs of elements become ordinary links.
 //
-// Oracle: the irradiance the link brings to a surface facing the source (by the unbounded
-// point kernel), times the relative error of the point approximation (2 × the bounding radii
-// over the distance, at most 4) where it is visible, plus the uncertainty of its visibility:
+// Oracle: a pair whose bounding radii sum to half their distance or more is always split (the
+// point model fails there, whatever the rays say); otherwise the irradiance the link brings to
+// a surface facing the source (by the unbounded point kernel), times the relative error of the
+// point approximation (2 × the bounding radii over the distance) where it is visible, plus the
+// uncertainty of its visibility:
 // all of it for partly occluded links, 1/n for links all n of whose rays were blocked (n
 // blocked rays cannot tell 0 from about 1/n). Such a link is first given more rays (up to
 // 256), which is far cheaper than splitting it: the parts of a wall-separated pair are
@@ -15,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/parallel.h"
 #include "form_factor.h"
@@ -25,8 +28,14 @@ namespace penumbra::solver {
 namespace {
 
 constexpr int k_cluster_rays = 4;
+/// A cluster link is kept only while the bounding spheres' radii sum to less than this times
+/// the distance between the centres (a multipole method's admissibility). Measured on the
+/// 2k office floor against 128 area-drawn rays per link: links with radii of 1–2 × the
+/// distance carried 3 % (cluster pairs) to 30 % (cluster–element) of their true transfer (their
+/// four rays, between points that face the other centre, see little of what the parts
+/// exchange); with this bound the links' summed model transfer is 0.97 of the true one.
+constexpr double k_admissible = 0.5;
 constexpr int k_facing_tries = 8;
-constexpr double k_max_size_factor = 4.0;
 /// Rays a link all of whose rays were blocked may get before the oracle splits it instead.
 constexpr int k_max_cluster_rays = 256;
 /// Such a link gets rays until its uncertainty is this many times below the threshold: a link
@@ -154,8 +163,9 @@ ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
     if (is_cluster(p) && !faces_box(cluster_index(p), q))
         return link;
     link.d = Vec3f(d);
-
-    if (!cast_cluster_rays(link, k_cluster_rays)) { // no surface of an end faces the other
+    // A pair too close for a point is split by the oracle at once: its rays would be wasted.
+    // Otherwise no ray can be cast only where no surface of an end faces the other.
+    if (rq + rp >= k_admissible * r || !cast_cluster_rays(link, k_cluster_rays)) {
         const double closest = 0.25 * (rq + rp), reach = std::max(r, closest);
         link.g = float(1.0 / (k_pi * reach * reach));
         link.v = 1.0f;
@@ -214,10 +224,10 @@ double LinkSet::cluster_link_error(const ClusterLink& link, const std::vector<Rg
     if (link.self) // its parts could bring each other up to its brightest radiosity
         return double((*peak_)[cluster_index(link.receiver)]);
     const double r = length(node_centre(link.source) - node_centre(link.receiver));
-    const double size_factor =
-        r > 0 ? std::min(k_max_size_factor,
-                         2.0 * (node_radius(link.receiver) + node_radius(link.source)) / r)
-              : k_max_size_factor;
+    const double radii = node_radius(link.receiver) + node_radius(link.source);
+    if (radii >= k_admissible * r) // too close for a point: split, whatever its rays said
+        return std::numeric_limits<double>::infinity();
+    const double size_factor = 2.0 * radii / r;
     return open_irradiance(link, b) *
            (double(link.v) * size_factor + visibility_uncertainty(link));
 }

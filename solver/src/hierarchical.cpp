@@ -159,10 +159,11 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     if (clusters.enabled) {
         clusters.tree = build_cluster_tree(h);
         init_cluster_values(clusters.tree, h, v.b, clusters.values);
+        const ClusterValues& cv = clusters.values;
         if (reuse)
-            links.attach_clusters(clusters.tree, clusters.values.exitance, clusters.values.peak);
+            links.attach_clusters(clusters.tree, cv.exitance, cv.exitance_emitted, cv.peak);
         else
-            links.link_clusters(clusters.tree, clusters.values.exitance, clusters.values.peak);
+            links.link_clusters(clusters.tree, cv.exitance, cv.exitance_emitted, cv.peak);
         ctx.info("hierarchical: {} clusters over {} elements", clusters.tree.size(),
                  h.root_count);
     }

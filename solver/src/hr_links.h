@@ -79,11 +79,13 @@ public:
     /// lights' links to every root they see. \p exitance is the clusters' exitance lobes
     /// (Σ B A cos) and \p peak their brightest root's radiosity, read by the oracle at every
     /// refine().
+    /// \p emitted is the clusters' emitted exitance lobes (Σ E A cos): the oracle holds the
+    /// direct light a link brings to a tighter bound than the reflected.
     void link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
-                       const std::vector<float>& peak);
+                       const std::vector<Lobes>& emitted, const std::vector<float>& peak);
     /// Uses \p tree (as link_clusters) without making links.
     void attach_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
-                         const std::vector<float>& peak);
+                         const std::vector<Lobes>& emitted, const std::vector<float>& peak);
     /// Takes saved links (a re-solve) and links the lights anew (their intensities may have
     /// changed).
     void restore(std::vector<Link> links, std::vector<ClusterLink> cluster_links);
@@ -137,8 +139,13 @@ private:
     bool resample_occluded(const std::vector<Rgb>& b);
     bool refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     double cluster_link_error(const ClusterLink& link, const std::vector<Rgb>& b) const;
-    /// What the link would bring to a surface facing its source were it unoccluded (W/m²).
-    double open_irradiance(const ClusterLink& link, const std::vector<Rgb>& b) const;
+    /// What the link would bring to a surface facing its source were it unoccluded (W/m²),
+    /// the source's parts radiating \p element per unit area and its clusters \p lobes.
+    double open_irradiance(const ClusterLink& link, const std::vector<Lobes>& lobes,
+                           const std::vector<Rgb>& element) const;
+    /// What the oracle weighs: the open irradiance, its reflected part divided by
+    /// k_reflected_slack.
+    double weighed_irradiance(const ClusterLink& link, const std::vector<Rgb>& b) const;
     Vec3 node_centre(NodeRef n) const;
     double node_radius(NodeRef n) const;
     bool splittable(NodeRef n) const;
@@ -161,6 +168,7 @@ private:
     std::vector<std::uint32_t> offsets_;
     const ClusterTree* tree_ = nullptr;
     const std::vector<Lobes>* exitance_ = nullptr;
+    const std::vector<Lobes>* emitted_ = nullptr;
     const std::vector<float>* peak_ = nullptr;
     std::vector<Lobes> area_lobes_; ///< per cluster: Σ A max(0, ±n_a)
     /// The roots in depth-first order of the cluster tree, where every cluster is a range

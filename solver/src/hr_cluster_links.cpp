@@ -228,47 +228,48 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     return true;
 }
 
+LinkSet::PairGeometry LinkSet::pair_geometry(const ClusterLink& link) const {
+    return {length(node_centre(link.source) - node_centre(link.receiver)),
+            node_radius(link.receiver) + node_radius(link.source)};
+}
+
 double LinkSet::cluster_link_error(const ClusterLink& link, const std::vector<Rgb>& b) const {
     if (link.self) // its parts could bring each other up to its brightest radiosity
         return double((*peak_)[cluster_index(link.receiver)]);
-    const double r = length(node_centre(link.source) - node_centre(link.receiver));
-    const double radii = node_radius(link.receiver) + node_radius(link.source);
-    if (radii >= k_admissible * r) // too close for a point: split, whatever its rays said
+    const PairGeometry g = pair_geometry(link);
+    if (g.radii >= k_admissible * g.r) // too close for a point: split, whatever its rays said
         return std::numeric_limits<double>::infinity();
-    const double size_factor = 2.0 * radii / r;
-    return weighed_irradiance(link, b) *
+    const double size_factor = 2.0 * g.radii / g.r;
+    return weighed_irradiance(link, b, g) *
            (double(link.v) * size_factor + visibility_uncertainty(link));
 }
 
-double LinkSet::weighed_irradiance(const ClusterLink& link, const std::vector<Rgb>& b) const {
-    const double all = open_irradiance(link, *exitance_, b);
-    const double direct = open_irradiance(link, *emitted_, h_.emission);
-    return direct + std::max(0.0, all - direct) / k_reflected_slack;
-}
-
-double LinkSet::open_irradiance(const ClusterLink& link, const std::vector<Lobes>& exitance,
-                                const std::vector<Rgb>& b) const {
-    const NodeRef q = link.receiver, p = link.source;
-    const Vec3 d(link.d);
-    const double rq = node_radius(q), rp = node_radius(p);
-    const double r = length(node_centre(p) - node_centre(q));
+double LinkSet::weighed_irradiance(const ClusterLink& link, const std::vector<Rgb>& b,
+                                   const PairGeometry& g) const {
     // Σ B A cos toward the receiver, relaxed by the angle the pair subtends: over a wide
     // angle the direction between the parts differs from the centres' (a lamp in one half of a
     // cluster pair radiates down onto the floor of the other half, not sideways).
-    const double spread = r > 0 ? std::min(1.0, (rq + rp) / r) : 1.0;
-    double intensity;
-    if (is_cluster(p)) {
-        const Lobes& lobes = exitance[cluster_index(p)];
-        double widest = 0;
-        for (const Rgb& lobe : lobes)
-            widest = std::max(widest, double(lobe.max_component()));
-        intensity = double(lobe_projection(lobes, -d).max_component()) + spread * widest;
-    } else {
-        const double cosine = std::clamp(dot(h_.normal[p], -d) + spread, 0.0, 1.0);
-        intensity = double(b[p].max_component()) * h_.area[p] * cosine;
-    }
+    const double spread = g.r > 0 ? std::min(1.0, g.radii / g.r) : 1.0;
+    const double all = intensity_toward(link, *exitance_, b, spread);
+    const double direct = intensity_toward(link, *emitted_, h_.emission, spread);
+    const double weighed = direct + std::max(0.0, all - direct) / k_reflected_slack;
     const double r_floor = 1e-6 * h_.diagonal; // coincident centres: refine, without overflow
-    return intensity / (k_pi * std::max(r * r, r_floor * r_floor));
+    return weighed / (k_pi * std::max(g.r * g.r, r_floor * r_floor));
+}
+
+double LinkSet::intensity_toward(const ClusterLink& link, const std::vector<Lobes>& lobes,
+                                 const std::vector<Rgb>& element, double spread) const {
+    const NodeRef p = link.source;
+    const Vec3 d(link.d);
+    if (is_cluster(p)) {
+        const Lobes& l = lobes[cluster_index(p)];
+        double widest = 0;
+        for (const Rgb& lobe : l)
+            widest = std::max(widest, double(lobe.max_component()));
+        return double(lobe_projection(l, -d).max_component()) + spread * widest;
+    }
+    const double cosine = std::clamp(dot(h_.normal[p], -d) + spread, 0.0, 1.0);
+    return double(element[p].max_component()) * h_.area[p] * cosine;
 }
 
 // An all-blocked link above the threshold only for its visibility's uncertainty gets as many
@@ -282,7 +283,7 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
         ClusterLink& l = cluster_links_[k];
         if (l.self || l.v > 0 || l.rays == 0 || l.rays >= k_max_cluster_rays)
             return;
-        const double open = weighed_irradiance(l, b);
+        const double open = weighed_irradiance(l, b, pair_geometry(l));
         if (open / double(l.rays) <= threshold / k_resample_margin)
             return;
         const double wanted = std::min(double(k_max_cluster_rays),

@@ -139,13 +139,19 @@ private:
     bool resample_occluded(const std::vector<Rgb>& b);
     bool refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     double cluster_link_error(const ClusterLink& link, const std::vector<Rgb>& b) const;
-    /// What the link would bring to a surface facing its source were it unoccluded (W/m²),
-    /// the source's parts radiating \p element per unit area and its clusters \p lobes.
-    double open_irradiance(const ClusterLink& link, const std::vector<Lobes>& lobes,
-                           const std::vector<Rgb>& element) const;
-    /// What the oracle weighs: the open irradiance, its reflected part divided by
-    /// k_reflected_slack.
-    double weighed_irradiance(const ClusterLink& link, const std::vector<Rgb>& b) const;
+    struct PairGeometry {
+        double r = 0;     ///< distance between the ends' centres
+        double radii = 0; ///< sum of their bounding radii
+    };
+    PairGeometry pair_geometry(const ClusterLink& link) const;
+    /// What the oracle weighs: what the link would bring to a surface facing its source were
+    /// it unoccluded (W/m²), its reflected part divided by k_reflected_slack.
+    double weighed_irradiance(const ClusterLink& link, const std::vector<Rgb>& b,
+                              const PairGeometry& g) const;
+    /// The source's intensity × π toward the receiver (largest channel), its elements
+    /// radiating \p element per unit area and its clusters \p lobes, relaxed by \p spread.
+    double intensity_toward(const ClusterLink& link, const std::vector<Lobes>& lobes,
+                            const std::vector<Rgb>& element, double spread) const;
     Vec3 node_centre(NodeRef n) const;
     double node_radius(NodeRef n) const;
     bool splittable(NodeRef n) const;

@@ -25,8 +25,9 @@ struct OfficeParams {
 };
 
 /// \brief Builds the floor: materials "wall" (ρ 0.7), "desk" (ρ 0.4) and an emissive "panel"
-///        (30 W/(sr·m²) from its front; its black back absorbs), a camera in the first office and a work-plane sensor (0.8 m)
-///        in the middle of every office. Mesher and solver settings are the defaults.
+///        (30 W/(sr·m²) from its front; its black back absorbs), a camera in the first
+///        office and a work-plane sensor (0.8 m) in the middle of every office. Mesher and
+///        solver settings are the defaults.
 /// \throws ConfigError for parameters out of range.
 Scene office_floor(const OfficeParams& params);
 

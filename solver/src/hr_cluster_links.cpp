@@ -9,10 +9,9 @@
 // point model fails there, whatever the rays say); otherwise the irradiance the link brings to
 // a surface facing the source (by the unbounded point kernel), times the relative error of the
 // point approximation (2 × the bounding radii over the distance) where it is visible, plus the
-// uncertainty of its visibility (the irradiance counts what the source emits in full, what it
-// reflects divided by k_reflected_slack):
-// all of it for partly occluded links, 1/n for links all n of whose rays were blocked (n
-// blocked rays cannot tell 0 from about 1/n). Such a link is first given more rays (up to
+// uncertainty of its visibility: all of it for partly occluded links, 1/n for links all n of
+// whose rays were blocked (n blocked rays cannot tell 0 from about 1/n). The irradiance counts
+// what the source emits in full and what it reflects divided by k_reflected_slack. Such a link is first given more rays (up to
 // 256), which is far cheaper than splitting it: the parts of a wall-separated pair are
 // occluded again, and splitting the receiver does not lower the irradiance in question.
 
@@ -43,6 +42,10 @@ constexpr double k_admissible = 0.5;
 /// at ε = 3e-3 goes from 0.21 % to 0.34 % and the hall's vertex direct light stays at 0.61 %
 /// (at 10: 3.8 M links and 30 s, but two sealed rooms take 2.26 × one room's links).
 constexpr double k_reflected_slack = 3.0;
+
+/// Whether a pair of ends whose centres are \p r apart and whose bounding radii sum to
+/// \p radii may exchange light through one cluster link (k_admissible).
+bool admissible(double r, double radii) { return radii < k_admissible * r; }
 constexpr int k_facing_tries = 8;
 /// Rays a link all of whose rays were blocked may get before the oracle splits it instead.
 constexpr int k_max_cluster_rays = 256;
@@ -173,7 +176,7 @@ ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
     link.d = Vec3f(d);
     // A pair too close for a point is split by the oracle at once: its rays would be wasted.
     // Otherwise no ray can be cast only where no surface of an end faces the other.
-    if (rq + rp >= k_admissible * r || !cast_cluster_rays(link, k_cluster_rays)) {
+    if (!admissible(r, rq + rp) || !cast_cluster_rays(link, k_cluster_rays)) {
         const double closest = 0.25 * (rq + rp), reach = std::max(r, closest);
         link.g = float(1.0 / (k_pi * reach * reach));
         link.v = 1.0f;
@@ -237,7 +240,7 @@ double LinkSet::cluster_link_error(const ClusterLink& link, const std::vector<Rg
     if (link.self) // its parts could bring each other up to its brightest radiosity
         return double((*peak_)[cluster_index(link.receiver)]);
     const PairGeometry g = pair_geometry(link);
-    if (g.radii >= k_admissible * g.r) // too close for a point: split, whatever its rays said
+    if (!admissible(g.r, g.radii)) // too close for a point: split, whatever its rays said
         return std::numeric_limits<double>::infinity();
     const double size_factor = 2.0 * g.radii / g.r;
     return weighed_irradiance(link, b, g) *

@@ -203,15 +203,18 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
             subdivide(decision[k] == split_receiver ? links_[k].receiver : links_[k].source, b,
                       b_range);
     std::vector<Link> next;
+    std::vector<std::uint8_t> next_kept;
     std::vector<std::size_t> fresh;
     for (std::size_t k = 0; k < links_.size(); ++k) {
         const Link& l = links_[k];
         if (decision[k] == keep) {
             next.push_back(l);
+            next_kept.push_back(1);
             continue;
         }
         for (int c = 0; c < 4; ++c) {
             fresh.push_back(next.size());
+            next_kept.push_back(0);
             if (decision[k] == split_receiver)
                 next.push_back({std::uint32_t(h_.first_child[l.receiver] + c), l.source, 0, 0, 0});
             else
@@ -223,16 +226,13 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         if (faces(h_, l.receiver, l.source, 1e-9 * h_.diagonal))
             l = make_link(l.receiver, l.source);
     });
-    // Drop the new links that carry nothing; the kept ones (all ff > 0) stay marked.
-    std::vector<std::uint8_t> is_new(next.size(), 0);
-    for (std::size_t f : fresh)
-        is_new[f] = 1;
+    // Drop the new links that carry nothing (the kept ones all carry something).
     links_.clear();
     kept_.clear();
     for (std::size_t k = 0; k < next.size(); ++k)
         if (next[k].ff > 0) {
             links_.push_back(next[k]);
-            kept_.push_back(is_new[k] ? 0 : 1);
+            kept_.push_back(next_kept[k]);
         }
     return true;
 }

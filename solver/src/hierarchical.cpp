@@ -4,7 +4,7 @@
 // counted double) down to a minimum area; a Jacobi gathering sweep over the links is followed by push-pull over the
 // hierarchy (irradiance gathered at a node applies to all its descendants; radiosity is pulled
 // up as the area mean). Reflectors have no radiosity before the first solve, so refinement
-// and solving alternate until refinement changes nothing.
+// and solving alternate until refinement changes nothing, or next to nothing.
 //
 // Deviations: form factors are receiver-side quadratures of the analytic point-to-triangle
 // form factor (4 points, 64 for near pairs) times ray visibility, rather than Hanrahan's

@@ -8,14 +8,22 @@
 // hull of its corners' projections, and those lie inside the surface by a margin), so an
 // enclosed point costs about as many rays as there are groups of sources at the edges of its
 // enclosure's faces, not one per source in the scene. The outcome is the same as one ray per
-// source.
+// source. A convex blocker may be a set of coplanar surfaces that tile a convex region (the
+// quads of a tessellated cabinet side): one small quad alone hides few sources, so without
+// the groups an enclosed point under a tessellated cabinet cost about one ray per source.
 
 #include "hidden.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
+#include <numeric>
 #include <span>
+#include <tuple>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_2.h>
 
 namespace penumbra::mesher {
 
@@ -76,9 +84,96 @@ EnclosureTest::EnclosureTest(const Scene& scene, const std::vector<Surface>& sur
         sources_.push_back({light.position, -1});
     if (!sources_.empty())
         build_sources(0, std::uint32_t(sources_.size()));
-    convex_.resize(surfaces.size());
-    for (std::size_t i = 0; i < surfaces.size(); ++i)
-        convex_[i] = convex_outline(surfaces[i].outline2d);
+    build_blockers();
+}
+
+namespace {
+
+// Union–find over surface indices, the smaller root kept (deterministic).
+std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
+    while (parent[i] != i)
+        i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+} // namespace
+
+// Coplanar non-emitting surfaces (the same plane up to rounding, either orientation) that
+// share outline vertices form groups; a group whose members' areas add up to its convex
+// hull's tiles the hull, which then blocks as one surface. Other convex surfaces block alone.
+void EnclosureTest::build_blockers() {
+    const std::size_t n = surfaces_.size();
+    blocker_of_.assign(n, -1);
+    const double length_step = 1e-9 * std::max(params_.diagonal, 1e-6);
+    auto rounded = [](double x, double step) { return std::int64_t(std::llround(x / step)); };
+    using PlaneKey = std::tuple<std::int64_t, std::int64_t, std::int64_t, std::int64_t>;
+    std::map<PlaneKey, std::vector<std::uint32_t>> planes;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        const Surface& s = surfaces_[i];
+        if (s.emits_front || s.emits_back)
+            continue;
+        // One orientation per plane: the first clearly non-zero normal component positive.
+        const Vec3 nn = s.normal;
+        const double lead = std::abs(nn.x) > 1e-6 ? nn.x : (std::abs(nn.y) > 1e-6 ? nn.y : nn.z);
+        const double sign = lead < 0 ? -1.0 : 1.0;
+        planes[{rounded(sign * nn.x, 1e-9), rounded(sign * nn.y, 1e-9),
+                rounded(sign * nn.z, 1e-9), rounded(sign * s.offset, length_step)}]
+            .push_back(i);
+    }
+    std::vector<std::uint32_t> parent(n);
+    std::iota(parent.begin(), parent.end(), 0u);
+    using VertexKey = std::tuple<std::int64_t, std::int64_t, std::int64_t>;
+    for (const auto& [key, members] : planes) {
+        if (members.size() < 2)
+            continue;
+        std::map<VertexKey, std::uint32_t> first_at;
+        for (std::uint32_t i : members)
+            for (const Vec3& v : surfaces_[i].outline) {
+                const VertexKey vk{rounded(v.x, length_step), rounded(v.y, length_step),
+                                   rounded(v.z, length_step)};
+                const auto [it, fresh] = first_at.emplace(vk, i);
+                if (!fresh) {
+                    const std::uint32_t a = find_root(parent, i), b = find_root(parent, it->second);
+                    parent[std::max(a, b)] = std::min(a, b);
+                }
+            }
+    }
+    std::map<std::uint32_t, std::vector<std::uint32_t>> groups; // by root, members ascending
+    for (const auto& [key, members] : planes)
+        for (std::uint32_t i : members)
+            groups[find_root(parent, i)].push_back(i);
+    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+    for (const auto& [root, members] : groups) {
+        std::vector<Vec2> hull;
+        if (members.size() > 1) {
+            const Surface& frame = surfaces_[root];
+            std::vector<K::Point_2> points, hull_points;
+            double area = 0;
+            for (std::uint32_t i : members) {
+                area += surfaces_[i].area;
+                for (const Vec3& v : surfaces_[i].outline) {
+                    const Vec2 x = frame.to_2d(v);
+                    points.emplace_back(x.x, x.y);
+                }
+            }
+            CGAL::convex_hull_2(points.begin(), points.end(), std::back_inserter(hull_points));
+            for (const K::Point_2& p : hull_points)
+                hull.push_back({p.x(), p.y()});
+            const double hull_area = std::abs(signed_area(hull));
+            if (hull.size() >= 3 && std::abs(hull_area - area) <= 1e-7 * hull_area) {
+                const auto b = std::int32_t(blockers_.size());
+                blockers_.push_back({root, std::move(hull)});
+                for (std::uint32_t i : members)
+                    blocker_of_[i] = b;
+                continue;
+            }
+        }
+        for (std::uint32_t i : members) // alone
+            if (convex_outline(surfaces_[i].outline2d)) {
+                blocker_of_[i] = std::int32_t(blockers_.size());
+                blockers_.push_back({i, surfaces_[i].outline2d});
+            }
+    }
 }
 
 std::int32_t EnclosureTest::build_sources(std::uint32_t first, std::uint32_t count) {
@@ -110,17 +205,17 @@ std::int32_t EnclosureTest::build_sources(std::uint32_t first, std::uint32_t cou
     return index;
 }
 
-// Whether every segment from q to a point of the convex hull of \p points crosses the convex,
-// non-emitting surface \p blocker at least a margin inside its outline and away from both ends:
-// then each source there is occluded by it, as sees() would find (the central projection of
-// the hull onto the surface's plane is the convex hull of the points' projections).
+// Whether every segment from q to a point of the convex hull of \p points crosses the convex
+// blocker of surface \p blocker (build_blockers) at least a margin inside its outline and
+// away from both ends: then each source there is occluded by it, as sees() would find (the
+// central projection of the hull onto the blocker's plane is the convex hull of the points'
+// projections). Emitting surfaces have no blocker: a source's own surface never occludes it.
 bool EnclosureTest::blocks(const Vec3& q, std::int32_t blocker,
                            std::span<const Vec3> points) const {
-    if (blocker < 0 || !convex_[std::size_t(blocker)])
+    if (blocker < 0 || blocker_of_[std::size_t(blocker)] < 0)
         return false;
-    const Surface& p = surfaces_[std::size_t(blocker)];
-    if (p.emits_front || p.emits_back) // a source's own surface never occludes it
-        return false;
+    const Blocker& b = blockers_[std::size_t(blocker_of_[std::size_t(blocker)])];
+    const Surface& p = surfaces_[b.frame];
     const double margin = 1e-8 * (params_.diagonal + length(q));
     const double dq = p.distance(q);
     if (std::abs(dq) <= margin)
@@ -133,7 +228,7 @@ bool EnclosureTest::blocks(const Vec3& q, std::int32_t blocker,
         if (!(t > 1e-6 && t < 1.0 - 1e-6))
             return false;
         const Vec2 x = p.to_2d(q + (c - q) * t);
-        if (!point_in_polygon(x, p.outline2d) || distance_to_boundary(x, p.outline2d) <= margin)
+        if (!point_in_polygon(x, b.outline) || distance_to_boundary(x, b.outline) <= margin)
             return false;
     }
     return true;

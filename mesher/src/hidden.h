@@ -53,7 +53,17 @@ private:
     std::vector<Vec3> directions_; ///< unit, around +z
     std::vector<SourcePoint> sources_;
     std::vector<SourceNode> source_nodes_;
-    std::vector<bool> convex_; ///< per surface: a convex outline, usable to cull sources
+    /// A convex region of one plane that occludes sources: a non-emitting surface with a
+    /// convex outline, or a connected set of coplanar ones that tiles its convex hull (the
+    /// quads of a tessellated rectangle), in the 2D frame of one of them.
+    struct Blocker {
+        std::uint32_t frame = 0; ///< the surface whose plane and 2D frame the outline uses
+        std::vector<Vec2> outline;
+    };
+    void build_blockers();
+
+    std::vector<Blocker> blockers_;
+    std::vector<std::int32_t> blocker_of_; ///< per surface: its Blocker, or −1
 };
 
 } // namespace penumbra::mesher

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <deque>
+#include <utility>
 
 namespace penumbra::solver {
 
@@ -26,62 +28,203 @@ Lobes surface_lobes(const Vec3& n, double area, const Rgb& value) {
     return out;
 }
 
+namespace {
+
+/// Items of at most this many roots are what the volume part of the tree splits.
+constexpr std::size_t k_item_roots = 32;
+
+struct RootSet {
+    const Hierarchy& h;
+    std::vector<Vec3> centroid;
+};
+
+// Splits order[begin, end) at its middle along the longest axis of the centroids' bounds.
+std::size_t median_split(const RootSet& roots, std::vector<std::uint32_t>& order,
+                         std::size_t begin, std::size_t end) {
+    BBox centres;
+    for (std::size_t i = begin; i < end; ++i)
+        centres.extend(roots.centroid[order[i]]);
+    const Vec3 extent = centres.hi - centres.lo;
+    const std::size_t axis = extent.x >= extent.y && extent.x >= extent.z
+                                 ? 0
+                                 : (extent.y >= extent.z ? 1 : 2);
+    const std::size_t mid = (begin + end) / 2;
+    std::nth_element(order.begin() + std::ptrdiff_t(begin), order.begin() + std::ptrdiff_t(mid),
+                     order.begin() + std::ptrdiff_t(end), [&](std::uint32_t a, std::uint32_t b) {
+                         const double ca = roots.centroid[a][axis], cb = roots.centroid[b][axis];
+                         return ca != cb ? ca < cb : a < b;
+                     });
+    return mid;
+}
+
+std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
+    while (parent[i] != i)
+        i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+// Planar groups: roots of one oriented plane (up to rounding) connected through shared
+// vertices, each listed by its smallest root, roots ascending.
+std::vector<std::vector<std::uint32_t>> planar_groups(const Hierarchy& h) {
+    const std::size_t n = h.root_count;
+    const double step = 1e-7 * std::max(h.diagonal, 1e-9);
+    auto q = [](double x, double unit) { return std::int64_t(std::llround(x / unit)); };
+    using Key = std::array<std::int64_t, 7>; // plane (4), vertex (3)
+    std::vector<std::pair<Key, std::uint32_t>> corners;
+    corners.reserve(3 * n);
+    for (std::uint32_t r = 0; r < n; ++r) {
+        const Vec3& nn = h.normal[r];
+        const double offset = dot(nn, h.triangle[r][0]);
+        for (const Vec3& v : h.triangle[r])
+            corners.push_back({Key{q(nn.x, 1e-6), q(nn.y, 1e-6), q(nn.z, 1e-6), q(offset, 1e3 * step),
+                                   q(v.x, step), q(v.y, step), q(v.z, step)},
+                               r});
+    }
+    std::sort(corners.begin(), corners.end());
+    std::vector<std::uint32_t> parent(n);
+    for (std::uint32_t r = 0; r < n; ++r)
+        parent[r] = r;
+    for (std::size_t i = 1; i < corners.size(); ++i)
+        if (corners[i].first == corners[i - 1].first) {
+            const std::uint32_t a = find_root(parent, corners[i].second),
+                                b = find_root(parent, corners[i - 1].second);
+            parent[std::max(a, b)] = std::min(a, b);
+        }
+    std::vector<std::vector<std::uint32_t>> groups;
+    std::vector<std::int64_t> index(n, -1);
+    for (std::uint32_t r = 0; r < n; ++r) {
+        const std::uint32_t g = find_root(parent, r);
+        if (index[g] < 0) {
+            index[g] = std::int64_t(groups.size());
+            groups.emplace_back();
+        }
+        groups[std::size_t(index[g])].push_back(r);
+    }
+    return groups;
+}
+
+} // namespace
+
+// Roots are first gathered into planar groups (the quads of a tessellated wall), and groups
+// cut by median splits into items of at most k_item_roots roots; the tree's upper part splits
+// sets of whole items (at the median of their centroids), its lower part an item's roots. So
+// the clusters below an item are planar, like face clusters (Willmott et al. 1999), rather
+// than slices through whatever surfaces a median cut meets.
 ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size) {
     ClusterTree tree;
-    std::vector<std::uint32_t> order(h.root_count);
-    std::vector<Vec3> centroid(h.root_count);
-    for (std::uint32_t r = 0; r < h.root_count; ++r) {
-        order[r] = r;
-        centroid[r] = h.centroid(r);
+    RootSet roots{h, std::vector<Vec3>(h.root_count)};
+    for (std::uint32_t r = 0; r < h.root_count; ++r)
+        roots.centroid[r] = h.centroid(r);
+    // Items: contiguous ranges of order.
+    std::vector<std::uint32_t> order;
+    order.reserve(h.root_count);
+    std::vector<std::size_t> item_begin;
+    for (std::vector<std::uint32_t>& group : planar_groups(h)) {
+        const std::size_t base = order.size();
+        order.insert(order.end(), group.begin(), group.end());
+        std::vector<std::pair<std::size_t, std::size_t>> stack{{base, order.size()}};
+        while (!stack.empty()) { // depth first, the lower half first: deterministic
+            const auto [b, e] = stack.back();
+            stack.pop_back();
+            if (e - b <= k_item_roots) {
+                item_begin.push_back(b);
+                continue;
+            }
+            const std::size_t mid = median_split(roots, order, b, e);
+            stack.push_back({mid, e});
+            stack.push_back({b, mid});
+        }
     }
+    // Items in order of their first position, then their centroids.
+    std::vector<std::size_t> starts = item_begin;
+    std::sort(starts.begin(), starts.end());
+    starts.push_back(order.size());
+    const std::size_t items = starts.size() - 1;
+    std::vector<Vec3> item_centre(items);
+    for (std::size_t i = 0; i < items; ++i) {
+        double area = 0;
+        Vec3 sum;
+        for (std::size_t k = starts[i]; k < starts[i + 1]; ++k) {
+            sum += roots.centroid[order[k]] * h.area[order[k]];
+            area += h.area[order[k]];
+        }
+        item_centre[i] = area > 0 ? sum / area : roots.centroid[order[starts[i]]];
+    }
+    std::vector<std::uint32_t> item_order(items);
+    for (std::uint32_t i = 0; i < items; ++i)
+        item_order[i] = i;
     struct Range {
-        std::size_t begin, end;
+        std::size_t begin, end; ///< over item_order (items) or order (roots)
+        bool of_items;
         std::int32_t parent;
+    };
+    auto for_roots = [&](const Range& range, auto&& fn) {
+        if (!range.of_items) {
+            for (std::size_t i = range.begin; i < range.end; ++i)
+                fn(order[i]);
+            return;
+        }
+        for (std::size_t k = range.begin; k < range.end; ++k)
+            for (std::size_t i = starts[item_order[k]]; i < starts[item_order[k] + 1]; ++i)
+                fn(order[i]);
     };
     // Breadth first, so that parents precede children and every cluster's children are
     // appended together.
-    std::deque<Range> queue{{0, order.size(), -1}};
+    std::deque<Range> queue;
+    if (items > 0)
+        queue.push_back({0, items, true, -1});
     while (!queue.empty()) {
-        const Range range = queue.front();
+        Range range = queue.front();
         queue.pop_front();
+        if (range.of_items && range.end - range.begin == 1) // one item: its roots
+            range = {starts[item_order[range.begin]], starts[item_order[range.begin] + 1], false,
+                     range.parent};
         const auto c = std::uint32_t(tree.size());
-        BBox box, centres;
+        BBox box;
         double area = 0;
-        for (std::size_t i = range.begin; i < range.end; ++i) {
-            const std::uint32_t r = order[i];
+        std::size_t count = 0;
+        for_roots(range, [&](std::uint32_t r) {
             for (const Vec3& v : h.triangle[r])
                 box.extend(v);
-            centres.extend(centroid[r]);
             area += h.area[r];
-        }
+            ++count;
+        });
         tree.lo.push_back(box.lo);
         tree.hi.push_back(box.hi);
         tree.area.push_back(area);
         tree.parent.push_back(range.parent);
         tree.child_begin.push_back(std::uint32_t(tree.children.size()));
-        if (range.end - range.begin <= leaf_size) {
-            for (std::size_t i = range.begin; i < range.end; ++i)
-                tree.children.push_back(order[i]);
+        if (count <= leaf_size) {
+            for_roots(range, [&](std::uint32_t r) { tree.children.push_back(r); });
             continue;
         }
-        const Vec3 extent = centres.hi - centres.lo;
-        const std::size_t axis = extent.x >= extent.y && extent.x >= extent.z
-                                     ? 0
-                                     : (extent.y >= extent.z ? 1 : 2);
-        const std::size_t mid = (range.begin + range.end) / 2;
-        std::nth_element(order.begin() + std::ptrdiff_t(range.begin),
-                         order.begin() + std::ptrdiff_t(mid),
-                         order.begin() + std::ptrdiff_t(range.end),
-                         [&](std::uint32_t a, std::uint32_t b) {
-                             const double ca = centroid[a][axis], cb = centroid[b][axis];
-                             return ca != cb ? ca < cb : a < b;
-                         });
+        std::size_t mid;
+        if (range.of_items) {
+            BBox centres;
+            for (std::size_t k = range.begin; k < range.end; ++k)
+                centres.extend(item_centre[item_order[k]]);
+            const Vec3 extent = centres.hi - centres.lo;
+            const std::size_t axis = extent.x >= extent.y && extent.x >= extent.z
+                                         ? 0
+                                         : (extent.y >= extent.z ? 1 : 2);
+            mid = (range.begin + range.end) / 2;
+            std::nth_element(item_order.begin() + std::ptrdiff_t(range.begin),
+                             item_order.begin() + std::ptrdiff_t(mid),
+                             item_order.begin() + std::ptrdiff_t(range.end),
+                             [&](std::uint32_t a, std::uint32_t b) {
+                                 const double ca = item_centre[a][axis],
+                                              cb = item_centre[b][axis];
+                                 return ca != cb ? ca < cb : a < b;
+                             });
+        } else {
+            mid = median_split(roots, order, range.begin, range.end);
+        }
         // Children get consecutive indices after every cluster already queued.
         const auto first = std::uint32_t(tree.size() + queue.size());
         tree.children.push_back(cluster_ref(first));
         tree.children.push_back(cluster_ref(first + 1));
-        queue.push_back({range.begin, mid, std::int32_t(c)});
-        queue.push_back({mid, range.end, std::int32_t(c)});
+        queue.push_back({range.begin, mid, range.of_items, std::int32_t(c)});
+        queue.push_back({mid, range.end, range.of_items, std::int32_t(c)});
     }
     tree.child_begin.push_back(std::uint32_t(tree.children.size()));
     return tree;

@@ -59,8 +59,11 @@ struct ClusterTree {
     double radius(std::uint32_t c) const { return 0.5 * length(hi[c] - lo[c]); }
 };
 
-/// \brief Clusters over the roots of \p h: median splits along the longest axis of the
-///        centroids' bounds until a cluster holds at most \p leaf_size roots. Deterministic.
+/// \brief Clusters over the roots of \p h, face clusters below volume clusters: roots of one
+///        plane connected through shared vertices form planar groups, cut into items of at
+///        most 32 roots; median splits along the longest axis of the centroids' bounds divide
+///        sets of whole items, then each item's roots, until a cluster holds at most
+///        \p leaf_size roots. Deterministic.
 ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size = 8);
 
 /// \brief Per cluster, the summed lobes of its roots, root r carrying \p value[r] per unit

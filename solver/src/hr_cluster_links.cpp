@@ -7,7 +7,8 @@
 //
 // Oracle: a pair whose bounding radii sum to half their distance or more is always split (the
 // point model fails there, whatever the rays say); otherwise the irradiance the link brings to
-// a surface facing the source (by the unbounded point kernel), times the relative error of the
+// a surface facing the source (by the larger of the centres' point kernel and the link's own
+// calibrated one), times the relative error of the
 // point approximation (2 × the bounding radii over the distance) where it is visible, plus the
 // uncertainty of its visibility: all of it for partly occluded links, 1/n for links all n of
 // whose rays were blocked (n blocked rays cannot tell 0 from about 1/n). The irradiance counts
@@ -47,6 +48,8 @@ constexpr double k_reflected_slack = 3.0;
 /// \p radii may exchange light through one cluster link (k_admissible).
 bool admissible(double r, double radii) { return radii < k_admissible * r; }
 constexpr int k_facing_tries = 8;
+/// Largest factor the true cosines may scale a cluster link's kernel by (cast_cluster_rays).
+constexpr double k_max_calibration = 4.0;
 /// Rays a link all of whose rays were blocked may get before the oracle splits it instead.
 constexpr int k_max_cluster_rays = 256;
 /// Such a link gets rays until its uncertainty is this many times below the threshold: a link
@@ -189,14 +192,25 @@ ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
 // nearly touch: such links carry light only while the oracle finds it negligible. g · v is
 // the mean over the rays of V / (π d²); g alone the mean over the open rays (over all while
 // none is open, which is what the link's g holds then).
+//
+// The lobe model gives each end the cosine of the centres' direction, where the light of a
+// pair of near planar clusters (a floor and a wall by their common edge) travels at other
+// angles: g is scaled by the open rays' mean true kernel cos_q cos_p / (π d²) over their mean
+// 1/(π d²) times their mean product of the model's cosines (at most k_max_calibration, where
+// the centres' direction grazes an end). With planar clusters, the lamp room's power error at
+// ε = 3e-3 falls from 0.74 % to 0.11 % (0.34 % with the volume clusters of before).
 bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     const NodeRef q = link.receiver, p = link.source;
     const Vec3 cq = node_centre(q), cp = node_centre(p);
     const double closest = 0.25 * (node_radius(q) + node_radius(p));
     Pcg32 rng = Pcg32::for_stream(RngPurpose::cluster_visibility, q, p, link.rays,
                                   settings_.rows.seed);
+    const double rc = length(cp - cq);
+    const Vec3 dc = rc > 0 ? (cp - cq) / rc : Vec3(0, 0, 1);
     std::vector<Segment> segments;
-    std::vector<double> kernel;
+    // Per ray: the point kernel 1/(π d²), the true one (cos_q cos_p / (π d²)) and the cosines'
+    // product the lobe model gives the two ends along the centres' direction.
+    std::vector<double> kernel, true_kernel, model_cosines;
     for (int k = 0; k < count; ++k) {
         Vec3 nq, np;
         const Vec3 xq = sample_facing_point(q, cp, rng, nq, dfs_area_);
@@ -207,6 +221,11 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
         segments.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
         const double dd = std::max(dot(xp - xq, xp - xq), closest * closest);
         kernel.push_back(1.0 / (k_pi * dd));
+        const double length_qp = length(xp - xq);
+        const Vec3 w = length_qp > 0 ? (xp - xq) / length_qp : dc;
+        true_kernel.push_back(std::max(0.0, dot(nq, w)) * std::max(0.0, -dot(np, w)) /
+                              (k_pi * dd));
+        model_cosines.push_back(std::max(0.0, dot(nq, dc)) * std::max(0.0, -dot(np, dc)));
     }
     if (segments.empty())
         return link.rays > 0;
@@ -216,13 +235,19 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     double open = double(link.v) * before;
     double g_open = open > 0 ? double(link.g) * open : 0.0;
     double g_all = open > 0 ? 0.0 : double(link.g) * before; // only read while none is open
+    const bool first_open = open == 0; // the kernel is calibrated over the first open rays
+    double true_open = 0, cosines_open = 0;
     for (std::size_t k = 0; k < segments.size(); ++k) {
         g_all += kernel[k];
         if (!blocked[k]) {
             open += 1;
             g_open += kernel[k];
+            true_open += true_kernel[k];
+            cosines_open += model_cosines[k];
         }
     }
+    if (first_open && g_open > 0 && cosines_open > 0)
+        g_open *= std::min(k_max_calibration, open * true_open / (g_open * cosines_open));
     const double total = before + double(segments.size());
     link.rays = std::uint16_t(total);
     link.v = float(open / total);
@@ -257,7 +282,10 @@ double LinkSet::weighed_irradiance(const ClusterLink& link, const std::vector<Rg
     const double direct = intensity_toward(link, *emitted_, h_.emission, spread);
     const double weighed = direct + std::max(0.0, all - direct) / k_reflected_slack;
     const double r_floor = 1e-6 * h_.diagonal; // coincident centres: refine, without overflow
-    return weighed / (k_pi * std::max(g.r * g.r, r_floor * r_floor));
+    const double point = 1.0 / (k_pi * std::max(g.r * g.r, r_floor * r_floor));
+    // A link with open rays brings its own kernel g (calibrated to the true cosines, which may
+    // exceed the centres' point kernel): the oracle weighs the larger.
+    return weighed * (link.v > 0 ? std::max(point, double(link.g)) : point);
 }
 
 double LinkSet::intensity_toward(const ClusterLink& link, const std::vector<Lobes>& lobes,

@@ -37,7 +37,9 @@ struct LightLink {
 /// of intensity (1/π) Σ B A cos toward the receiver, the receiver as a point at its centre.
 struct ClusterLink {
     NodeRef receiver = 0, source = 0;
-    float g = 0;   ///< mean 1 / (π d²) over the open rays between the two ends (all if none)
+    /// Mean 1 / (π d²) over the open rays between the two ends (all if none), scaled to their
+    /// true cosines (cast_cluster_rays)
+    float g = 0;
     float v = 0;   ///< visible fraction from the link's rays
     Vec3f d;       ///< unit direction from the receiver's centre to the source's centre
     std::uint8_t partial = 0; ///< the rays disagreed

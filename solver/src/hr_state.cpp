@@ -17,7 +17,8 @@ namespace penumbra::solver {
 
 namespace {
 
-constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '3'};
+// Version 4: cluster links index the face-cluster tree, and their kernels are calibrated.
+constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '4'};
 
 class Writer {
 public:

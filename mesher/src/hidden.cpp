@@ -18,12 +18,13 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <span>
 #include <tuple>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_2.h>
+
+#include "core/disjoint_sets.h"
 
 namespace penumbra::mesher {
 
@@ -87,17 +88,6 @@ EnclosureTest::EnclosureTest(const Scene& scene, const std::vector<Surface>& sur
     build_blockers();
 }
 
-namespace {
-
-// Union–find over surface indices, the smaller root kept (deterministic).
-std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
-    while (parent[i] != i)
-        i = parent[i] = parent[parent[i]];
-    return i;
-}
-
-} // namespace
-
 // Coplanar non-emitting surfaces (the same plane up to rounding, either orientation) that
 // share outline vertices form groups; a group whose members' areas add up to its convex
 // hull's tiles the hull, which then blocks as one surface. Other convex surfaces block alone.
@@ -120,8 +110,7 @@ void EnclosureTest::build_blockers() {
                 rounded(sign * nn.z, 1e-9), rounded(sign * s.offset, length_step)}]
             .push_back(i);
     }
-    std::vector<std::uint32_t> parent(n);
-    std::iota(parent.begin(), parent.end(), 0u);
+    DisjointSets sets(n);
     using VertexKey = std::tuple<std::int64_t, std::int64_t, std::int64_t>;
     for (const auto& [key, members] : planes) {
         if (members.size() < 2)
@@ -132,16 +121,14 @@ void EnclosureTest::build_blockers() {
                 const VertexKey vk{rounded(v.x, length_step), rounded(v.y, length_step),
                                    rounded(v.z, length_step)};
                 const auto [it, fresh] = first_at.emplace(vk, i);
-                if (!fresh) {
-                    const std::uint32_t a = find_root(parent, i), b = find_root(parent, it->second);
-                    parent[std::max(a, b)] = std::min(a, b);
-                }
+                if (!fresh)
+                    sets.unite(i, it->second);
             }
     }
     std::map<std::uint32_t, std::vector<std::uint32_t>> groups; // by root, members ascending
     for (const auto& [key, members] : planes)
         for (std::uint32_t i : members)
-            groups[find_root(parent, i)].push_back(i);
+            groups[sets.find(i)].push_back(i);
     using K = CGAL::Exact_predicates_inexact_constructions_kernel;
     for (const auto& [root, members] : groups) {
         std::vector<Vec2> hull;

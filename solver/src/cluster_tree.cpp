@@ -1,10 +1,12 @@
 #include "cluster_tree.h"
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <deque>
 #include <utility>
+
+#include "core/disjoint_sets.h"
 
 namespace penumbra::solver {
 
@@ -57,12 +59,6 @@ std::size_t median_split(const RootSet& roots, std::vector<std::uint32_t>& order
     return mid;
 }
 
-std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
-    while (parent[i] != i)
-        i = parent[i] = parent[parent[i]];
-    return i;
-}
-
 // Planar groups: roots of one oriented plane (up to rounding) connected through shared
 // vertices, each listed by its smallest root, roots ascending.
 std::vector<std::vector<std::uint32_t>> planar_groups(const Hierarchy& h) {
@@ -81,19 +77,14 @@ std::vector<std::vector<std::uint32_t>> planar_groups(const Hierarchy& h) {
                                r});
     }
     std::sort(corners.begin(), corners.end());
-    std::vector<std::uint32_t> parent(n);
-    for (std::uint32_t r = 0; r < n; ++r)
-        parent[r] = r;
+    DisjointSets sets(n);
     for (std::size_t i = 1; i < corners.size(); ++i)
-        if (corners[i].first == corners[i - 1].first) {
-            const std::uint32_t a = find_root(parent, corners[i].second),
-                                b = find_root(parent, corners[i - 1].second);
-            parent[std::max(a, b)] = std::min(a, b);
-        }
+        if (corners[i].first == corners[i - 1].first)
+            sets.unite(corners[i].second, corners[i - 1].second);
     std::vector<std::vector<std::uint32_t>> groups;
     std::vector<std::int64_t> index(n, -1);
     for (std::uint32_t r = 0; r < n; ++r) {
-        const std::uint32_t g = find_root(parent, r);
+        const std::uint32_t g = sets.find(r);
         if (index[g] < 0) {
             index[g] = std::int64_t(groups.size());
             groups.emplace_back();

@@ -7,6 +7,8 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "core/disjoint_sets.h"
+
 namespace penumbra::mesher {
 
 namespace {
@@ -34,22 +36,6 @@ Interval project(const Segment2& t, const Segment2& s) {
     const double u = dot(t.a - s.a, d) / len2, v = dot(t.b - s.a, d) / len2;
     return {std::min(u, v), std::max(u, v)};
 }
-
-struct UnionFind {
-    std::vector<std::size_t> parent;
-    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    std::size_t find(std::size_t i) {
-        while (parent[i] != i)
-            i = parent[i] = parent[parent[i]];
-        return i;
-    }
-    void unite(std::size_t a, std::size_t b) {
-        a = find(a);
-        b = find(b);
-        if (a != b)
-            parent[std::max(a, b)] = std::min(a, b);
-    }
-};
 
 /// Snaps points to the nearest anchor within a distance, else to the nearest earlier point,
 /// with a hash grid.
@@ -141,7 +127,7 @@ std::vector<Segment2> merge_collinear(const std::vector<Segment2>& segments, dou
     std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) {
         return min_x(a) < min_x(b) || (min_x(a) == min_x(b) && a < b);
     });
-    UnionFind groups(n);
+    DisjointSets groups(n);
     for (std::size_t k = 0; k < n; ++k) {
         const std::size_t i = by_x[k];
         for (std::size_t m = k + 1; m < n && min_x(by_x[m]) <= max_x(i) + snap; ++m) {
@@ -153,13 +139,13 @@ std::vector<Segment2> merge_collinear(const std::vector<Segment2>& segments, dou
                                                                                 : segments[j];
             const Interval a = project(segments[i], ref), b = project(segments[j], ref);
             if (std::max(a.first, b.first) <= std::min(a.second, b.second) + snap / ref.length())
-                groups.unite(i, j);
+                groups.unite(std::uint32_t(i), std::uint32_t(j));
         }
     }
     std::vector<Segment2> out;
     std::vector<std::vector<std::size_t>> members(n);
     for (std::size_t i = 0; i < n; ++i)
-        members[groups.find(i)].push_back(i);
+        members[groups.find(std::uint32_t(i))].push_back(i);
     for (std::size_t g = 0; g < n; ++g) {
         if (members[g].empty())
             continue;

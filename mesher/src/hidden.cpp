@@ -221,6 +221,13 @@ bool EnclosureTest::blocks(const Vec3& q, std::int32_t blocker,
     return true;
 }
 
+bool EnclosureTest::same_blocker(std::int32_t a, std::int32_t b) const {
+    if (a == b)
+        return true;
+    return a >= 0 && b >= 0 && blocker_of_[std::size_t(a)] >= 0 &&
+           blocker_of_[std::size_t(a)] == blocker_of_[std::size_t(b)];
+}
+
 bool EnclosureTest::blocks(const Vec3& q, std::int32_t blocker, const BBox& box) const {
     std::array<Vec3, 8> corners;
     for (std::size_t k = 0; k < 8; ++k)
@@ -263,7 +270,9 @@ bool EnclosureTest::sees_a_source(const Vec3& q) const {
             continue;
         }
         const std::int32_t blocker = bvh_.first_hit(q, centre(node.box) - q, 0.0, 1.0).surface;
-        if (blocker != item.blocker && blocks(q, blocker, node.box))
+        // The parent's blocker was tried on this box above; another tile of its group would
+        // be the same test.
+        if (!same_blocker(blocker, item.blocker) && blocks(q, blocker, node.box))
             continue;
         stack.push_back({node.right, blocker});
         stack.push_back({node.left, blocker});

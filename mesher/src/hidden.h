@@ -45,6 +45,8 @@ private:
     bool sees(const Vec3& q, const SourcePoint& src) const;
     bool blocks(const Vec3& q, std::int32_t blocker, std::span<const Vec3> points) const;
     bool blocks(const Vec3& q, std::int32_t blocker, const BBox& box) const;
+    /// Surfaces \p a and \p b (−1: none) block as one: the same surface or the same group.
+    bool same_blocker(std::int32_t a, std::int32_t b) const;
     std::int32_t build_sources(std::uint32_t first, std::uint32_t count);
 
     const std::vector<Surface>& surfaces_;

@@ -35,25 +35,21 @@ namespace {
 /// Items of at most this many roots are what the volume part of the tree splits.
 constexpr std::size_t k_item_roots = 32;
 
-struct RootSet {
-    const Hierarchy& h;
-    std::vector<Vec3> centroid;
-};
-
-// Splits order[begin, end) at its middle along the longest axis of the centroids' bounds.
-std::size_t median_split(const RootSet& roots, std::vector<std::uint32_t>& order,
+// Splits order[begin, end) (indices into \p point) at its middle along the longest axis of
+// their points' bounds; ties by index, so the split is deterministic.
+std::size_t median_split(const std::vector<Vec3>& point, std::vector<std::uint32_t>& order,
                          std::size_t begin, std::size_t end) {
-    BBox centres;
+    BBox bounds;
     for (std::size_t i = begin; i < end; ++i)
-        centres.extend(roots.centroid[order[i]]);
-    const Vec3 extent = centres.hi - centres.lo;
+        bounds.extend(point[order[i]]);
+    const Vec3 extent = bounds.hi - bounds.lo;
     const std::size_t axis = extent.x >= extent.y && extent.x >= extent.z
                                  ? 0
                                  : (extent.y >= extent.z ? 1 : 2);
     const std::size_t mid = (begin + end) / 2;
     std::nth_element(order.begin() + std::ptrdiff_t(begin), order.begin() + std::ptrdiff_t(mid),
                      order.begin() + std::ptrdiff_t(end), [&](std::uint32_t a, std::uint32_t b) {
-                         const double ca = roots.centroid[a][axis], cb = roots.centroid[b][axis];
+                         const double ca = point[a][axis], cb = point[b][axis];
                          return ca != cb ? ca < cb : a < b;
                      });
     return mid;
@@ -103,32 +99,30 @@ std::vector<std::vector<std::uint32_t>> planar_groups(const Hierarchy& h) {
 // than slices through whatever surfaces a median cut meets.
 ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size) {
     ClusterTree tree;
-    RootSet roots{h, std::vector<Vec3>(h.root_count)};
+    std::vector<Vec3> centroid(h.root_count);
     for (std::uint32_t r = 0; r < h.root_count; ++r)
-        roots.centroid[r] = h.centroid(r);
-    // Items: contiguous ranges of order.
+        centroid[r] = h.centroid(r);
+    // Items: the contiguous ranges order[starts[i], starts[i + 1]), emitted in increasing
+    // order (groups one after another, each depth first, the lower half first).
     std::vector<std::uint32_t> order;
     order.reserve(h.root_count);
-    std::vector<std::size_t> item_begin;
+    std::vector<std::size_t> starts;
     for (std::vector<std::uint32_t>& group : planar_groups(h)) {
         const std::size_t base = order.size();
         order.insert(order.end(), group.begin(), group.end());
         std::vector<std::pair<std::size_t, std::size_t>> stack{{base, order.size()}};
-        while (!stack.empty()) { // depth first, the lower half first: deterministic
+        while (!stack.empty()) {
             const auto [b, e] = stack.back();
             stack.pop_back();
             if (e - b <= k_item_roots) {
-                item_begin.push_back(b);
+                starts.push_back(b);
                 continue;
             }
-            const std::size_t mid = median_split(roots, order, b, e);
+            const std::size_t mid = median_split(centroid, order, b, e);
             stack.push_back({mid, e});
             stack.push_back({b, mid});
         }
     }
-    // Items in order of their first position, then their centroids.
-    std::vector<std::size_t> starts = item_begin;
-    std::sort(starts.begin(), starts.end());
     starts.push_back(order.size());
     const std::size_t items = starts.size() - 1;
     std::vector<Vec3> item_centre(items);
@@ -136,10 +130,10 @@ ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size) {
         double area = 0;
         Vec3 sum;
         for (std::size_t k = starts[i]; k < starts[i + 1]; ++k) {
-            sum += roots.centroid[order[k]] * h.area[order[k]];
+            sum += centroid[order[k]] * h.area[order[k]];
             area += h.area[order[k]];
         }
-        item_centre[i] = area > 0 ? sum / area : roots.centroid[order[starts[i]]];
+        item_centre[i] = area > 0 ? sum / area : centroid[order[starts[i]]];
     }
     std::vector<std::uint32_t> item_order(items);
     for (std::uint32_t i = 0; i < items; ++i)
@@ -189,27 +183,9 @@ ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size) {
             for_roots(range, [&](std::uint32_t r) { tree.children.push_back(r); });
             continue;
         }
-        std::size_t mid;
-        if (range.of_items) {
-            BBox centres;
-            for (std::size_t k = range.begin; k < range.end; ++k)
-                centres.extend(item_centre[item_order[k]]);
-            const Vec3 extent = centres.hi - centres.lo;
-            const std::size_t axis = extent.x >= extent.y && extent.x >= extent.z
-                                         ? 0
-                                         : (extent.y >= extent.z ? 1 : 2);
-            mid = (range.begin + range.end) / 2;
-            std::nth_element(item_order.begin() + std::ptrdiff_t(range.begin),
-                             item_order.begin() + std::ptrdiff_t(mid),
-                             item_order.begin() + std::ptrdiff_t(range.end),
-                             [&](std::uint32_t a, std::uint32_t b) {
-                                 const double ca = item_centre[a][axis],
-                                              cb = item_centre[b][axis];
-                                 return ca != cb ? ca < cb : a < b;
-                             });
-        } else {
-            mid = median_split(roots, order, range.begin, range.end);
-        }
+        const std::size_t mid = range.of_items
+                                    ? median_split(item_centre, item_order, range.begin, range.end)
+                                    : median_split(centroid, order, range.begin, range.end);
         // Children get consecutive indices after every cluster already queued.
         const auto first = std::uint32_t(tree.size() + queue.size());
         tree.children.push_back(cluster_ref(first));

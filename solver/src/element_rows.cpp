@@ -77,40 +77,6 @@ double point_form_factors(const Quadrature& quad, const OrientedTriangle& a,
     return sum / double(quad.count);
 }
 
-// Casts \p per_point rays from each active quadrature point to random points of b; adds the
-// open ones to open[q].
-void cast_pair_rays(const Quadrature& quad, const PointValues& f, const OrientedTriangle& a,
-                    const OrientedTriangle& b, double offset, int per_point,
-                    const VisibilityQuery& visibility, Pcg32& rng,
-                    std::array<int, k_max_quadrature_points>& open) {
-    std::vector<Segment> segments;
-    segments.reserve(quad.count * std::size_t(per_point));
-    // Endpoints leave their own surface along its normal and, where the two planes meet at an
-    // angle, the other surface's plane too: a target on a wall next to the floor would
-    // otherwise end within float precision of the floor and count as blocked.
-    const double cross_weight = offset * (1.0 - std::abs(dot(a.n, b.n)));
-    const Vec3 lift_a = a.n * offset + b.n * cross_weight;
-    const Vec3 lift_b = b.n * offset + a.n * cross_weight;
-    for (std::size_t q = 0; q < quad.count; ++q) {
-        if (f[q] <= 0)
-            continue;
-        Vec3 from = quad.point[q] + lift_a;
-        for (int r = 0; r < per_point; ++r) {
-            Vec3 to = sample_triangle(b.v, rng.next_double(), rng.next_double()) + lift_b;
-            segments.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
-        }
-    }
-    std::vector<std::uint8_t> blocked(segments.size());
-    visibility.occluded(segments, blocked);
-    std::size_t s = 0;
-    for (std::size_t q = 0; q < quad.count; ++q) {
-        if (f[q] <= 0)
-            continue;
-        for (int r = 0; r < per_point; ++r)
-            open[q] += blocked[s++] ? 0 : 1;
-    }
-}
-
 } // namespace
 
 bool is_near(const OrientedTriangle& a, const OrientedTriangle& b) {
@@ -138,6 +104,45 @@ double triangle_form_factor_unoccluded(const OrientedTriangle& a, const Oriented
     return point_form_factors(make_quadrature(a.v, level), a, b, f_point);
 }
 
+TransferVisibility transfer_visibility(const Vec3* x, const double* importance,
+                                       std::size_t count, const std::function<Vec3(Pcg32&)>& target,
+                                       const Vec3& lift_from, const Vec3& lift_to, int probes,
+                                       int rays, const VisibilityQuery& visibility, Pcg32& rng) {
+    TransferVisibility out;
+    std::vector<double> running(count + 1, 0.0);
+    for (std::size_t i = 0; i < count; ++i)
+        running[i + 1] = running[i] + std::max(0.0, importance[i]);
+    if (running[count] <= 0)
+        return out;
+    std::vector<Segment> segments;
+    std::vector<std::uint8_t> blocked;
+    int open = 0;
+    auto cast = [&](int n) {
+        segments.clear();
+        for (int j = 0; j < n; ++j) {
+            const double u = (double(j) + rng.next_double()) / double(n) * running[count];
+            const auto it = std::upper_bound(running.begin() + 1, running.end(), u);
+            const auto i = std::size_t(std::clamp<std::ptrdiff_t>(it - running.begin() - 1, 0,
+                                                                   std::ptrdiff_t(count) - 1));
+            const Vec3 from = x[i] + lift_from, to = target(rng) + lift_to;
+            segments.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
+        }
+        blocked.assign(segments.size(), 0);
+        visibility.occluded(segments, blocked);
+        for (std::uint8_t b : blocked)
+            open += b ? 0 : 1;
+        out.rays += n;
+    };
+    // A few blocked probes do not prove a pair dark (a pair seen through a door would be
+    // dropped for good): those get the full rays too.
+    cast(probes);
+    if (open < probes)
+        cast(std::max(rays, 1));
+    out.partial = open > 0 && open < out.rays;
+    out.fraction = double(open) / double(out.rays);
+    return out;
+}
+
 PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTriangle& b,
                                     int level, const VisibilityQuery& visibility, double offset,
                                     std::uint64_t key_a, std::uint64_t key_b,
@@ -150,29 +155,20 @@ PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTri
         return result;
     const auto [lo, hi] = std::minmax_element(f_point.begin(), f_point.begin() + quad.count);
     result.f_spread = *hi - *lo;
-    const auto active = std::size_t(std::count_if(f_point.begin(), f_point.begin() + quad.count,
-                                                  [](double f) { return f > 0; }));
     Pcg32 rng = Pcg32::for_stream(RngPurpose::form_factor_visibility, key_a, key_b, 0,
                                   settings.seed);
-    std::array<int, k_max_quadrature_points> open{};
-    cast_pair_rays(quad, f_point, a, b, offset, 1, visibility, rng, open);
-    int open_probes = 0;
-    for (std::size_t q = 0; q < quad.count; ++q)
-        open_probes += open[q];
-    if (open_probes == int(active)) {
-        result.f = result.f_unoccluded;
-        return result;
-    }
-    if (open_probes == 0)
-        return result;
-    result.partial = true;
-    const int per_point =
-        std::max(1, int(std::ceil(double(settings.visibility_rays) / double(quad.count))));
-    if (per_point > 1)
-        cast_pair_rays(quad, f_point, a, b, offset, per_point - 1, visibility, rng, open);
-    for (std::size_t q = 0; q < quad.count; ++q)
-        result.f += f_point[q] * double(open[q]) / per_point;
-    result.f /= double(quad.count);
+    // Endpoints leave their own surface along its normal and, where the two planes meet at an
+    // angle, the other surface's plane too: a target on a wall next to the floor would
+    // otherwise end within float precision of the floor and count as blocked.
+    const double cross_weight = offset * (1.0 - std::abs(dot(a.n, b.n)));
+    const TransferVisibility v = transfer_visibility(
+        quad.point.data(), f_point.data(), quad.count,
+        [&](Pcg32& r) { return sample_triangle(b.v, r.next_double(), r.next_double()); },
+        a.n * offset + b.n * cross_weight, b.n * offset + a.n * cross_weight,
+        std::clamp(int(quad.count), k_min_probe_rays, k_max_probe_rays), settings.visibility_rays,
+        visibility, rng);
+    result.f = result.f_unoccluded * v.fraction;
+    result.partial = v.partial;
     return result;
 }
 

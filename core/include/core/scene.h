@@ -132,7 +132,7 @@ struct SolverSettings {
     int max_sweeps = 500;         ///< gathering: most sweeps per solve
     bool ambient = false;         ///< add the ambient term (previews only)
     std::int64_t max_shots = 0;   ///< 0 = 10 000 × element count
-    int visibility_rays = 16;     ///< rays per element pair that is not trivially visible
+    int visibility_rays = 16;     ///< rays per element pair its probes do not show fully visible
     double row_cache_mb = 2048;   ///< memory for cached form-factor rows
 };
 

@@ -3,11 +3,9 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "core/mesh.h"
-#include "core/rng.h"
 #include "core/visibility.h"
 
 namespace penumbra::solver {
@@ -53,35 +51,11 @@ struct PairFormFactor {
     double f_spread = 0;
 };
 
-/// Rays that probe a transfer's visibility before more are cast (transfer_visibility): a
-/// pair all of whose probes are open counts as unoccluded, which overestimates a pair with a
-/// small occluded part (by up to about 8 % of its transfer with 4 probes, 2 % with 16), so
-/// fine rules, whose pairs are near and large relative to their distance, get more.
-inline constexpr int k_min_probe_rays = 4;
-inline constexpr int k_max_probe_rays = 16;
-
-struct TransferVisibility {
-    double fraction = 0;  ///< of the rays, weighed as the transfer
-    bool partial = false; ///< the rays disagreed
-    int rays = 0;         ///< cast
-};
-
-/// \brief The visible fraction of the transfer from receiver points \p x (whose shares of the
-///        transfer are \p importance) to a source whose points \p target draws by area: rays
-///        leave the points in proportion to their shares (stratified, jittered) and end at
-///        drawn source points, lifted by \p lift_from and \p lift_to. \p probes first;
-///        \p rays more unless all were open. Importance sampling: a near pair's fine
-///        quadrature rule does not cost a ray per point.
-TransferVisibility transfer_visibility(const Vec3* x, const double* importance,
-                                       std::size_t count, const std::function<Vec3(Pcg32&)>& target,
-                                       const Vec3& lift_from, const Vec3& lift_to, int probes,
-                                       int rays, const VisibilityQuery& visibility, Pcg32& rng);
-
 /// \brief F_ab = (1/A_a) ∫_a F(x → b) V(x, b) dx by the equal-weight rule of \p level on a,
-///        analytic point-to-triangle F, and its visible fraction from transfer_visibility
-///        with a stream keyed by (key_a, key_b, seed): as many probes as points (4 to 16),
-///        \p visibility_rays more unless all were open. The caller checks that a and b face
-///        each other.
+///        analytic point-to-triangle F, and its visible fraction from rays that leave the
+///        points in proportion to their share of the transfer, from a stream keyed by
+///        (key_a, key_b, seed): as many probes as points (4 to 16), \p visibility_rays more
+///        unless all were open. The caller checks that a and b face each other.
 PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTriangle& b,
                                     int level, const VisibilityQuery& visibility, double offset,
                                     std::uint64_t key_a, std::uint64_t key_b,

@@ -48,6 +48,9 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
+/// A refinement running longer than this logs its progress at every pass this long after
+/// the last.
+constexpr double k_refine_report_s = 10.0;
 /// solver.clustering "auto" clusters meshes with more elements than this.
 constexpr std::size_t k_clustering_auto_roots = 3000;
 
@@ -196,7 +199,23 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     for (int cycle = 0; cycle < k_max_cycles; ++cycle) {
         auto t0 = Clock::now();
         const std::size_t links_before = links.link_count(), nodes_before = h.size();
-        const bool changed = links.refine(v.b, v.b_range);
+        // Within a cycle, the bar moves half way to the cycle's end per pass (their number is
+        // not known ahead either), and a long refinement says where it is every
+        // k_refine_report_s.
+        const double cycle_start = 1.0 - std::pow(0.5, cycle);
+        const double cycle_share = std::pow(0.5, cycle + 1);
+        auto last_report = t0;
+        auto on_pass = [&](const RefinePass& p) {
+            progress.update(cycle_start + cycle_share * (1.0 - std::pow(0.5, p.pass)));
+            if (seconds_since(last_report) < k_refine_report_s)
+                return;
+            last_report = Clock::now();
+            ctx.info("hierarchical: cycle {}: refining, pass {} ({} links): {} nodes, {} "
+                     "element, {} cluster and {} light links after {:.0f} s",
+                     cycle, p.pass, p.kind, p.nodes, p.element_links, p.cluster_links,
+                     p.light_links, seconds_since(t0));
+        };
+        const bool changed = links.refine(v.b, v.b_range, on_pass);
         const double refine_s = seconds_since(t0);
         t0 = Clock::now();
         if (changed || v.weights.empty()) {

@@ -275,18 +275,31 @@ bool LinkSet::refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range
     return true;
 }
 
-bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range) {
+bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range,
+                     const std::function<void(const RefinePass&)>& on_pass) {
     kept_.assign(links_.size(), 0); // radiosities have changed since the last refine()
     cluster_kept_.assign(cluster_links_.size(), 0);
     bool changed = false;
-    while (refine_light_pass(b, b_range))
+    int passes = 0;
+    auto report = [&](const char* kind) {
+        if (on_pass)
+            on_pass({kind, ++passes, links_.size(), cluster_links_.size(), light_links_.size(),
+                     h_.size()});
+    };
+    while (refine_light_pass(b, b_range)) {
         changed = true;
+        report("light");
+    }
     if (tree_)
         weigh_sources(b);
-    while (tree_ && refine_cluster_pass(b, b_range))
+    while (tree_ && refine_cluster_pass(b, b_range)) {
         changed = true;
-    while (refine_pass(b, b_range))
+        report("cluster");
+    }
+    while (refine_pass(b, b_range)) {
         changed = true;
+        report("element");
+    }
     if (changed) // the links are kept sorted and indexed: only changes need it again
         sort_and_index();
     return changed;

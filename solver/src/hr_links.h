@@ -4,6 +4,7 @@
 // power oracle.
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/rng.h"
@@ -68,6 +69,13 @@ struct RefineSettings {
     double offset = 0;
 };
 
+/// What refine() reports after each of its passes (a pass refines every link once).
+struct RefinePass {
+    const char* kind = "";  ///< "light", "cluster" or "element" links
+    int pass = 0;           ///< passes of refine() so far, from 1
+    std::size_t element_links = 0, cluster_links = 0, light_links = 0, nodes = 0;
+};
+
 class LinkSet {
 public:
     /// \p sun (may be null) must outlive the link set.
@@ -98,7 +106,11 @@ public:
     /// Refines every link whose oracle says so, given node radiosities \p b and their ranges
     /// over each node's leaves \p b_range (largest channel), until none does. New nodes get
     /// their parent's values. Returns true if anything changed.
-    bool refine(std::vector<Rgb>& b, std::vector<float>& b_range);
+    /// \p on_pass (may be empty) is called after every pass, on the calling thread (it may
+    /// throw Cancelled): a big scene's first refinement makes hundreds of millions of links
+    /// over many passes.
+    bool refine(std::vector<Rgb>& b, std::vector<float>& b_range,
+                const std::function<void(const RefinePass&)>& on_pass = {});
 
     const std::vector<Link>& links() const { return links_; }
     const std::vector<LightLink>& light_links() const { return light_links_; }

@@ -171,5 +171,42 @@ TEST(Hierarchical, IdenticalFor1And2And4Threads) {
     }
 }
 
+// The bar moves and a cancel is honoured within a refinement, not only after each refine →
+// solve cycle (on a 1 M-triangle floor, the first cycle runs for more than half an hour).
+TEST(Hierarchical, ReportsProgressWithinRefinementAndHonoursCancel) {
+    Scene scene = cornell(0.2);
+    scene.solver.epsilon = 1e-2;
+    app::BakeOptions options;
+    options.render = false;
+    Context ctx = test::quiet_context(2);
+    auto progress = std::make_shared<test::RecordingProgress>();
+    ctx.progress = progress;
+    app::bake(scene, options, ctx);
+    const auto stage = std::find(progress->stages.begin(), progress->stages.end(), "hierarchical");
+    ASSERT_NE(stage, progress->stages.end());
+    const auto index = std::size_t(stage - progress->stages.begin());
+    std::vector<double> f; // the hierarchical stage's fractions
+    std::size_t first = progress->fractions.size(); // and the update number of its first
+    for (std::size_t k = 0; k < progress->fractions.size(); ++k)
+        if (progress->stage_of[k] == index) {
+            first = std::min(first, k);
+            f.push_back(progress->fractions[k]);
+        }
+    EXPECT_TRUE(std::is_sorted(f.begin(), f.end()));
+    // The first cycle's share is [0, 0.5]: its refinement passes report inside it (before, the
+    // first update came at 0.5, after the cycle's solve).
+    ASSERT_GE(std::count_if(f.begin(), f.end(), [](double x) { return x > 0 && x < 0.5; }), 2);
+    ASSERT_LT(f.front(), 0.5);
+
+    // Cancelled at the hierarchical stage's first update, a refinement pass of the first
+    // cycle: the bake stops there.
+    auto cancelling = std::make_shared<test::RecordingProgress>();
+    cancelling->cancel_after = first + 1;
+    ctx.progress = cancelling;
+    EXPECT_THROW(app::bake(scene, options, ctx), Cancelled);
+    EXPECT_EQ(cancelling->stages.back(), "hierarchical");
+    EXPECT_LT(cancelling->fractions.back(), 0.5);
+}
+
 } // namespace
 } // namespace penumbra

@@ -2,6 +2,8 @@
 // Helpers shared by the test suites.
 
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/context.h"
 
@@ -15,6 +17,25 @@ std::string temp_dir(const std::string& tag);
 
 /// A context that logs warnings and errors to stderr only, with the given thread count.
 Context quiet_context(int threads = 0);
+
+/// A progress sink that records its stages, its fractions and the stage of each (an index
+/// into stages), and cancels at the cancel_after-th update.
+class RecordingProgress final : public ProgressSink {
+public:
+    void begin(std::string_view stage) override { stages.emplace_back(stage); }
+    bool update(double fraction) override {
+        fractions.push_back(fraction);
+        stage_of.push_back(stages.size() - 1);
+        return fractions.size() < cancel_after;
+    }
+    void end() override { ++ended; }
+
+    std::vector<std::string> stages;
+    std::vector<double> fractions;
+    std::vector<std::size_t> stage_of;
+    std::size_t cancel_after = 1000000;
+    int ended = 0;
+};
 
 } // namespace penumbra::test
 

@@ -327,21 +327,6 @@ TEST(Render, BitwiseIdenticalForAnyThreadCount) {
     EXPECT_NE(std::memcmp(a.pixels.data(), c.pixels.data(), a.pixels.size() * sizeof(Rgb)), 0);
 }
 
-class RecordingProgress final : public ProgressSink {
-public:
-    void begin(std::string_view stage) override { stages.emplace_back(stage); }
-    bool update(double fraction) override {
-        fractions.push_back(fraction);
-        return fractions.size() < cancel_after;
-    }
-    void end() override { ++ended; }
-
-    std::vector<std::string> stages;
-    std::vector<double> fractions;
-    std::size_t cancel_after = 1000000;
-    int ended = 0;
-};
-
 TEST(Render, ReportsProgressAndHonoursCancel) {
     RadiosityMesh mesh;
     add_square(mesh, -1, 1, 0, true, true);
@@ -349,7 +334,7 @@ TEST(Render, ReportsProgressAndHonoursCancel) {
     Solution solution;
     solution.vertex_radiosity.assign(mesh.vertex_count(), Rgb(1.0f));
     Context ctx = test::quiet_context(2);
-    auto progress = std::make_shared<RecordingProgress>();
+    auto progress = std::make_shared<test::RecordingProgress>();
     ctx.progress = progress;
     render_solution(scene, solution, camera_on_axis(5, 16, 64, 1), ctx);
     ASSERT_EQ(progress->stages, std::vector<std::string>{"render"});

@@ -199,8 +199,11 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     for (int cycle = 0; cycle < k_max_cycles; ++cycle) {
         auto t0 = Clock::now();
         const std::size_t links_before = links.link_count(), nodes_before = h.size();
-        // Within a cycle, the bar moves half way to the cycle's end per pass (their number is
-        // not known ahead either), and a long refinement says where it is every
+        // The number of cycles is not known ahead (refinement stops when the radiosities stop
+        // asking for it, usually after 3–6): half the bar for the first, which links and
+        // refines the most, and half of what is left for each one after it. Within a cycle,
+        // the bar moves half way to the cycle's end per refinement pass (their number is not
+        // known ahead either), and a long refinement says where it is every
         // k_refine_report_s.
         const double cycle_start = 1.0 - std::pow(0.5, cycle);
         const double cycle_share = std::pow(0.5, cycle + 1);
@@ -238,10 +241,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
                  cycle, h.size(), links.link_count(), links.links().size(),
                  links.cluster_links().size(), links.light_links().size(), s.sweeps, passes,
                  s.relative);
-        // The number of cycles is not known ahead (refinement stops when the radiosities stop
-        // asking for it, usually after 3–6): half the bar for the first, which links and
-        // refines the most, and half of what is left for each one after it.
-        progress.update(1.0 - std::pow(0.5, cycle + 1));
+        progress.update(cycle_start + cycle_share);
         if (!changed && cycle > 0)
             break;
         // A refinement that added next to nothing leaves the solution where the next one

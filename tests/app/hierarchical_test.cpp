@@ -185,13 +185,14 @@ TEST(Hierarchical, ReportsProgressWithinRefinementAndHonoursCancel) {
     const auto stage = std::find(progress->stages.begin(), progress->stages.end(), "hierarchical");
     ASSERT_NE(stage, progress->stages.end());
     const auto index = std::size_t(stage - progress->stages.begin());
-    std::vector<double> f; // the hierarchical stage's fractions
-    std::size_t first = progress->fractions.size(); // and the update number of its first
-    for (std::size_t k = 0; k < progress->fractions.size(); ++k)
-        if (progress->stage_of[k] == index) {
-            first = std::min(first, k);
+    // The update number of the hierarchical stage's first, and that stage's fractions.
+    const auto first = std::size_t(
+        std::find(progress->stage_of.begin(), progress->stage_of.end(), index) -
+        progress->stage_of.begin());
+    std::vector<double> f;
+    for (std::size_t k = first; k < progress->fractions.size(); ++k)
+        if (progress->stage_of[k] == index)
             f.push_back(progress->fractions[k]);
-        }
     EXPECT_TRUE(std::is_sorted(f.begin(), f.end()));
     // The first cycle's share is [0, 0.5]: its refinement passes report inside it (before, the
     // first update came at 0.5, after the cycle's solve).

@@ -94,6 +94,14 @@ public:
         t.seconds += seconds_since(start);
         ++t.calls;
     }
+    void first_hit(std::span<const Segment> segments,
+                   std::span<std::int32_t> hit) const override {
+        const Clock::time_point start = Clock::now();
+        inner_.first_hit(segments, hit);
+        Tally& t = tally_.local();
+        t.seconds += seconds_since(start);
+        ++t.calls;
+    }
     std::uint64_t rays_traced() const override { return inner_.rays_traced(); }
 
     /// Thread-seconds spent in occluded() and the number of calls, over all threads.

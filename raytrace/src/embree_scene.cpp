@@ -250,6 +250,35 @@ void EmbreeScene::occluded(std::span<const Segment> segments, std::span<std::uin
     impl_->errors.throw_if_failed("rtcOccluded1M");
 }
 
+void EmbreeScene::first_hit(std::span<const Segment> segments,
+                            std::span<std::int32_t> hit) const {
+    if (segments.size() != hit.size())
+        throw InternalError(fmt::format("EmbreeScene::first_hit: {} segments but {} results",
+                                        segments.size(), hit.size()));
+    constexpr std::size_t k_batch = 256;
+    std::array<RTCRayHit, k_batch> rays;
+    RTCIntersectContext context;
+    for (std::size_t begin = 0; begin < segments.size(); begin += k_batch) {
+        const std::size_t count = std::min(k_batch, segments.size() - begin);
+        for (std::size_t i = 0; i < count; ++i) {
+            const Segment& s = segments[begin + i];
+            rays[i].ray = make_ray(s.origin, s.direction, s.tnear, s.tfar);
+            rays[i].ray.id = unsigned(i);
+            rays[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rays[i].hit.primID = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcInitIntersectContext(&context);
+        rtcIntersect1M(impl_->scene.get(), &context, rays.data(), unsigned(count),
+                       sizeof(RTCRayHit));
+        for (std::size_t i = 0; i < count; ++i)
+            hit[begin + i] = rays[i].hit.geomID == RTC_INVALID_GEOMETRY_ID
+                                 ? -1
+                                 : std::int32_t(mesh_.geometry_elements[rays[i].hit.primID]);
+    }
+    impl_->rays.fetch_add(segments.size(), std::memory_order_relaxed);
+    impl_->errors.throw_if_failed("rtcIntersect1M");
+}
+
 std::uint64_t EmbreeScene::rays_traced() const {
     return impl_->rays.load(std::memory_order_relaxed);
 }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "core/rng.h"
@@ -13,6 +14,7 @@
 #include "cluster_tree.h"
 #include "element_rows.h"
 #include "hierarchy.h"
+#include "occluders.h"
 
 namespace penumbra::solver {
 
@@ -142,6 +144,14 @@ private:
     void index_cluster_links();
     // Clusters (hr_cluster_links.cpp).
     ClusterLink make_cluster_link(NodeRef receiver, NodeRef source) const;
+    /// Whether the links' rays of \p hits (the elements they hit first; all were blocked)
+    /// met a plane that blocks every segment between the link's ends (occluders.h).
+    bool certified_occluded(const ClusterLink& link, std::span<const std::int32_t> hits) const;
+    /// Whether node \p n lies on side \p side (±1) of occluder plane \p plane, every surface
+    /// of it facing the other side strictly so (what it exchanges with that side then crosses
+    /// the plane); appends points whose convex hull holds it to \p points.
+    bool shaft_end(NodeRef n, std::uint32_t plane, double side,
+                   std::vector<Vec3>& points) const;
     /// Casts \p count more rays for \p link (a stream keyed by its ends and the rays it has),
     /// updating its visibility and distance term.
     /// Returns false if no ray could be cast (no surface of one end faces the other).
@@ -203,6 +213,11 @@ private:
         double d = 0; ///< n · (a point of the plane)
     };
     std::vector<Plane> dfs_plane_; ///< of each root in dfs_roots_, for the facing test
+    OccluderPlanes occluders_;
+    /// Per cluster and axis lobe (lobe_index), the bounds of its roots with a normal component
+    /// in that lobe (lo xyz, hi xyz, rounded outward; empty where lo > hi): which part of a
+    /// cluster faces a plane's side.
+    std::vector<std::array<std::array<float, 6>, 6>> lobe_bounds_;
     std::vector<ClusterLink> cluster_links_;
     std::vector<std::uint32_t> cl_elements_, cl_clusters_;
     /// Within one refine(), per link: its oracle already said keep. Radiosities do not change

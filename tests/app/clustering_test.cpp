@@ -140,9 +140,9 @@ TEST(Clustering, IdenticalFor1And2And4Threads) {
 // Two such rooms side by side, each sealed by its own walls 0.2 m apart: every ray between
 // them is blocked, and the second room must cost about the links of the first, not a
 // cascade of cluster links split level after level because four blocked rays cannot prove
-// the pair dark (they get more rays instead; measured 2.06 times one room's links, 2.22
-// before). Each room keeps its own light: the sensors of
-// the second equal the first's.
+// the pair dark (they get more rays instead: measured 2.06 times one room's links, 2.22
+// before; since a wall plane proves the pairs across it dark, 2.04). Each room keeps its own
+// light: the sensors of the second equal the first's.
 TEST(Clustering, SealedNeighbourAddsAboutItsOwnLinks) {
     const app::BakeResult one = bake(lamp_room("on", 3e-3));
     Scene pair = lamp_room("on", 3e-3);
@@ -156,7 +156,7 @@ TEST(Clustering, SealedNeighbourAddsAboutItsOwnLinks) {
     const app::BakeResult two = bake(pair);
     std::printf("lamp room: %zu links, two sealed rooms: %zu links\n", one.stats.links,
                 two.stats.links);
-    EXPECT_LT(double(two.stats.links), 2.15 * double(one.stats.links));
+    EXPECT_LT(double(two.stats.links), 2.08 * double(one.stats.links));
     for (std::size_t s = 0; s < n; ++s)
         EXPECT_LT(relative(two.sensors[s + n].irradiance_total.g,
                            two.sensors[s].irradiance_total.g),

@@ -130,6 +130,31 @@ TEST(EmbreeScene, SegmentEndsBeforeBlocker) {
     EXPECT_EQ(out[3], 0);
 }
 
+// first_hit names the nearest element along the segment (the front one of a two-sided
+// surface), -1 where nothing is hit; the blocker (elements 4, 5) lies between the receiver
+// (0–3) and the source (6–9).
+TEST(EmbreeScene, FirstHitNamesTheNearestElement) {
+    RadiosityMesh mesh = blocker_scene();
+    EmbreeScene scene(mesh);
+    const Segment segments[] = {
+        {Vec3f(0.5f, 0.5f, 0), Vec3f(0, 0, 2), 1e-4f, 1 - 1e-4f},  // up through the blocker
+        {Vec3f(0.5f, 0.5f, 2), Vec3f(0, 0, -2), 1e-4f, 1 - 1e-4f}, // down through it
+        {Vec3f(0.1f, 0.1f, 0), Vec3f(0, 0, 2), 1e-4f, 1 - 1e-4f},  // beside it: open
+        {Vec3f(0.1f, 0.1f, 1.5f), Vec3f(0, 0, 1), 0.0f, 10.f},     // up to the source
+        {Vec3f(0.1f, 0.1f, 0.5f), Vec3f(0, 0, -1), 0.0f, 10.f},    // down to the receiver
+    };
+    std::int32_t hit[5] = {7, 7, 7, 7, 7};
+    scene.first_hit(segments, hit);
+    EXPECT_TRUE(hit[0] == 4 || hit[0] == 5) << hit[0];
+    EXPECT_TRUE(hit[1] == 4 || hit[1] == 5) << hit[1];
+    EXPECT_EQ(hit[2], -1);
+    EXPECT_TRUE(hit[3] >= 6 && hit[3] <= 9) << hit[3];
+    EXPECT_TRUE(hit[4] >= 0 && hit[4] <= 3) << hit[4];
+    EXPECT_EQ(scene.rays_traced(), 5u);
+    std::int32_t too_few[2];
+    EXPECT_THROW(scene.first_hit(segments, too_few), InternalError);
+}
+
 TEST(EmbreeScene, RejectsMismatchedSpans) {
     RadiosityMesh mesh = blocker_scene();
     EmbreeScene scene(mesh);

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "core/vec.h"
 
@@ -23,9 +24,21 @@ public:
     virtual ~VisibilityQuery() = default;
     /// Sets out[i] = 1 if anything blocks segments[i], else 0. Sizes must match.
     virtual void occluded(std::span<const Segment> segments, std::span<std::uint8_t> out) const = 0;
+    /// Sets hit[i] to the mesh element segments[i] meets first (either side of a two-sided
+    /// surface may be named), -1 if nothing blocks it, or -2 if something does that this
+    /// query cannot name (the default, which calls occluded()). Sizes must match.
+    virtual void first_hit(std::span<const Segment> segments, std::span<std::int32_t> hit) const;
     /// Total rays traced so far.
     virtual std::uint64_t rays_traced() const = 0;
 };
+
+inline void VisibilityQuery::first_hit(std::span<const Segment> segments,
+                                       std::span<std::int32_t> hit) const {
+    std::vector<std::uint8_t> blocked(segments.size());
+    occluded(segments, blocked);
+    for (std::size_t i = 0; i < blocked.size() && i < hit.size(); ++i)
+        hit[i] = blocked[i] ? -2 : -1;
+}
 
 /// \brief A query that reports nothing blocked: for convex scenes and tests.
 class NoOcclusion final : public VisibilityQuery {

@@ -197,8 +197,14 @@ ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
         return link;
     link.d = Vec3f(d);
     // A pair too close for a point is split by the oracle at once: its rays would be wasted.
-    // Otherwise no ray can be cast only where no surface of an end faces the other.
-    if (!admissible(r, rq + rp) || !cast_cluster_rays(link, k_cluster_rays)) {
+    // Only the segment between its centres is traced, both ways, for a plane that may prove
+    // it dark (which spares the links its parts would make: most pairs across a partition
+    // are close ones). Otherwise no ray can be cast only where no surface of an end faces the
+    // other.
+    const bool near = !admissible(r, rq + rp);
+    if (near && centres_occluded(q, p))
+        return link; // carries nothing: the refinement drops it
+    if (near || !cast_cluster_rays(link, k_cluster_rays)) {
         const double closest = 0.25 * (rq + rp), reach = std::max(r, closest);
         link.g = float(1.0 / (k_pi * reach * reach));
         link.v = 1.0f;
@@ -278,12 +284,12 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
         g_open *= std::min(k_max_calibration, open * true_open / (g_open * cosines_open));
     const double total = before + double(segments.size());
     if (open == 0 && !hits.empty()) {
-        bool certified = certified_occluded(link, hits);
+        bool certified = certified_occluded(link.receiver, link.source, hits);
         if (!certified) { // the first hits from the source's end: a wall behind its furniture
             for (Segment& s : segments)
                 s = {s.origin + s.direction, s.direction * -1.0f, s.tnear, s.tfar};
             visibility_.first_hit(segments, hits);
-            certified = certified_occluded(link, hits);
+            certified = certified_occluded(link.receiver, link.source, hits);
         }
         if (certified) {
             link.rays = std::uint16_t(total);
@@ -298,18 +304,41 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     return true;
 }
 
-bool LinkSet::shaft_end(NodeRef n, std::uint32_t plane, double side,
+bool LinkSet::shaft_end(NodeRef n, NodeRef other, std::uint32_t plane, double side,
                         std::vector<Vec3>& points) const {
     const double tol = occluders_.tolerance();
     const Vec3& normal = occluders_.normal(plane);
     auto beyond = [&](const Vec3& x) { return side * occluders_.distance(plane, x); };
     if (!is_cluster(n)) {
         const bool faces_other = side * dot(h_.normal[n], normal) < -k_lobe_component;
-        for (const Vec3& v : h_.triangle[n]) {
-            const double d = beyond(v);
+        // Of an element, only the part in front of an element at the other end exchanges
+        // light with it (a ceiling panel and the side of a desk top below it: the part of the
+        // panel behind the side's plane would see past the desk's edge).
+        std::array<Vec3, 4> clipped;
+        std::size_t count = 0;
+        if (is_cluster(other)) {
+            for (const Vec3& v : h_.triangle[n])
+                clipped[count++] = v;
+        } else {
+            const Vec3& m = h_.normal[other];
+            const double offset = dot(m, h_.triangle[other][0]);
+            for (std::size_t k = 0; k < 3; ++k) { // Sutherland–Hodgman against one plane
+                const Vec3& a = h_.triangle[n][k];
+                const Vec3& b = h_.triangle[n][(k + 1) % 3];
+                const double da = dot(m, a) - offset, db = dot(m, b) - offset;
+                if (da >= 0)
+                    clipped[count++] = a;
+                if ((da >= 0) != (db >= 0))
+                    clipped[count++] = a + (b - a) * (da / (da - db));
+            }
+        }
+        if (count < 3)
+            return false; // nothing of it faces the other end
+        for (std::size_t k = 0; k < count; ++k) {
+            const double d = beyond(clipped[k]);
             if (d < -tol || (faces_other && d <= tol))
                 return false;
-            points.push_back(v);
+            points.push_back(clipped[k]);
         }
         return true;
     }
@@ -339,13 +368,26 @@ bool LinkSet::shaft_end(NodeRef n, std::uint32_t plane, double side,
     return on_side;
 }
 
-bool LinkSet::certified_occluded(const ClusterLink& link,
+bool LinkSet::centres_occluded(NodeRef q, NodeRef p) const {
+    if (occluders_.size() == 0)
+        return false;
+    const Vec3 cq = node_centre(q), cp = node_centre(p);
+    // Off the ends themselves: an element's centre lies on its own plane.
+    constexpr float lo = 1e-4f, hi = 1.0f - 1e-4f;
+    const Segment both[2] = {{Vec3f(cq), Vec3f(cp - cq), lo, hi},
+                             {Vec3f(cp), Vec3f(cq - cp), lo, hi}};
+    std::int32_t hits[2];
+    visibility_.first_hit(both, hits);
+    return (hits[0] != -1 || hits[1] != -1) && certified_occluded(q, p, hits);
+}
+
+bool LinkSet::certified_occluded(NodeRef q, NodeRef p,
                                  std::span<const std::int32_t> hits) const {
     if (occluders_.size() == 0)
         return false;
     std::vector<std::uint32_t> tried;
     std::vector<Vec3> a, b;
-    const Vec3 cq = node_centre(link.receiver), cp = node_centre(link.source);
+    const Vec3 cq = node_centre(q), cp = node_centre(p);
     for (const std::int32_t e : hits) {
         if (e < 0 || std::size_t(e) >= h_.root_count)
             continue;
@@ -359,7 +401,7 @@ bool LinkSet::certified_occluded(const ClusterLink& link,
         const double side = dq > 0 ? 1.0 : -1.0;
         a.clear();
         b.clear();
-        if (shaft_end(link.receiver, plane, side, a) && shaft_end(link.source, plane, -side, b) &&
+        if (shaft_end(q, p, plane, side, a) && shaft_end(p, q, plane, -side, b) &&
             occluders_.blocks(plane, a, b))
             return true;
     }

@@ -41,6 +41,8 @@ LinkSet::LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, const Visibility
       settings_(settings) {}
 
 Link LinkSet::make_link(std::uint32_t q, std::uint32_t p) const {
+    if (centres_occluded(q, p)) // a plane between them proves them dark (with clusters)
+        return {q, p, 0.0f, 0.0f, 0};
     const OrientedTriangle a = oriented(h_, q), b = oriented(h_, p);
     const int level = quadrature_level_for(a, b, settings_.rows);
     PairFormFactor pf =

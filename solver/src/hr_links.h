@@ -144,13 +144,17 @@ private:
     void index_cluster_links();
     // Clusters (hr_cluster_links.cpp).
     ClusterLink make_cluster_link(NodeRef receiver, NodeRef source) const;
-    /// Whether the links' rays of \p hits (the elements they hit first; all were blocked)
-    /// met a plane that blocks every segment between the link's ends (occluders.h).
-    bool certified_occluded(const ClusterLink& link, std::span<const std::int32_t> hits) const;
-    /// Whether node \p n lies on side \p side (±1) of occluder plane \p plane, every surface
-    /// of it facing the other side strictly so (what it exchanges with that side then crosses
-    /// the plane); appends points whose convex hull holds it to \p points.
-    bool shaft_end(NodeRef n, std::uint32_t plane, double side,
+    /// Whether rays between nodes \p q and \p p that hit the elements \p hits first (-1: none,
+    /// -2: unnamed) met a plane that blocks every segment between the two (occluders.h).
+    bool certified_occluded(NodeRef q, NodeRef p, std::span<const std::int32_t> hits) const;
+    /// The same for the segment between their centres, traced both ways (two rays): a proof
+    /// that a pair is dark before its form factor is computed or its parts linked.
+    bool centres_occluded(NodeRef q, NodeRef p) const;
+    /// Whether node \p n (as far as it may exchange light with \p other) lies on side \p side
+    /// (±1) of occluder plane \p plane, every surface of it facing the other side strictly so
+    /// (what it exchanges with that side then crosses the plane); appends points whose convex
+    /// hull holds that part of it to \p points.
+    bool shaft_end(NodeRef n, NodeRef other, std::uint32_t plane, double side,
                    std::vector<Vec3>& points) const;
     /// Casts \p count more rays for \p link (a stream keyed by its ends and the rays it has),
     /// updating its visibility and distance term.

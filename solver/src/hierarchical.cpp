@@ -292,8 +292,9 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     state->mesh_hash = mesh_geometry_hash(mesh);
     state->clustered = clusters.enabled;
     state->twin = twin;
-    state->links = links.links();
-    state->cluster_links = links.cluster_links();
+    // Moved, not copied: a big scene's links are most of the solve's memory.
+    state->links = links.take_links();
+    state->cluster_links = links.take_cluster_links();
     state->radiosity = v.b;
     state->weights = std::move(v.weights);
     state->hierarchy = std::move(h);

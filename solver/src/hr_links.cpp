@@ -204,9 +204,16 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         if (decision[k] != keep)
             subdivide(decision[k] == split_receiver ? links_[k].receiver : links_[k].source, b,
                       b_range);
+    // Sized exactly: the biggest refinements of a large scene make tens of millions of links.
+    const std::size_t split =
+        std::size_t(std::count_if(decision.begin(), decision.end(),
+                                  [](std::uint8_t d) { return d != keep; }));
     std::vector<Link> next;
     std::vector<std::uint8_t> next_kept;
-    std::vector<std::size_t> fresh;
+    std::vector<std::uint32_t> fresh; // links stay below 2^32 (node ids are 32-bit)
+    next.reserve(links_.size() + 3 * split);
+    next_kept.reserve(next.capacity());
+    fresh.reserve(4 * split);
     for (std::size_t k = 0; k < links_.size(); ++k) {
         const Link& l = links_[k];
         if (decision[k] == keep) {
@@ -215,7 +222,7 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
             continue;
         }
         for (int c = 0; c < 4; ++c) {
-            fresh.push_back(next.size());
+            fresh.push_back(std::uint32_t(next.size()));
             next_kept.push_back(0);
             if (decision[k] == split_receiver)
                 next.push_back({std::uint32_t(h_.first_child[l.receiver] + c), l.source, 0, 0, 0});
@@ -228,14 +235,17 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         if (faces(h_, l.receiver, l.source, 1e-9 * h_.diagonal))
             l = make_link(l.receiver, l.source);
     });
-    // Drop the new links that carry nothing (the kept ones all carry something).
-    links_.clear();
-    kept_.clear();
+    // Drop the new links that carry nothing (the kept ones all carry something), in place.
+    std::size_t m = 0;
     for (std::size_t k = 0; k < next.size(); ++k)
         if (next[k].ff > 0) {
-            links_.push_back(next[k]);
-            kept_.push_back(next_kept[k]);
+            next[m] = next[k];
+            next_kept[m++] = next_kept[k];
         }
+    next.resize(m);
+    next_kept.resize(m);
+    links_.swap(next);
+    kept_.swap(next_kept);
     return true;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/rng.h"
@@ -115,6 +116,9 @@ public:
                 const std::function<void(const RefinePass&)>& on_pass = {});
 
     const std::vector<Link>& links() const { return links_; }
+    /// Moves the element links (or the cluster links) out, leaving the link set without them.
+    std::vector<Link> take_links() { return std::exchange(links_, {}); }
+    std::vector<ClusterLink> take_cluster_links() { return std::exchange(cluster_links_, {}); }
     const std::vector<LightLink>& light_links() const { return light_links_; }
     /// What the sun's links deliver, Σ irradiance × receiver area (W per channel): the
     /// sun's power in the balance.

@@ -5,7 +5,9 @@
 // two point sets on opposite sides of a plane crosses it inside the convex hull of the
 // crossings of the segments between their points; where that hull lies inside the union, the
 // plane blocks them all, which no finite number of rays can prove. An office's partition
-// blocks every link between the rooms on its two sides, except through its door.
+// blocks every link between the rooms on its two sides, except through its door. Every root
+// is an occluder, as every element is in the visibility query's scene (a surface that lets
+// light through would have to be left out of both).
 
 #include <array>
 #include <cstdint>

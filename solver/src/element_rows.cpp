@@ -164,10 +164,28 @@ int quadrature_level_for(const OrientedTriangle& a, const OrientedTriangle& b,
     return std::min(level, settings.near_quadrature_level);
 }
 
-double triangle_form_factor_unoccluded(const OrientedTriangle& a, const OrientedTriangle& b,
-                                       int level) {
+namespace {
+
+/// The unoccluded form factor and its spread; \p quad and \p f_point keep the points'.
+PairFormFactor unoccluded(const OrientedTriangle& a, const OrientedTriangle& b,
+                          const Quadrature& quad, PointValues& f_point) {
+    PairFormFactor result;
+    result.f_unoccluded = point_form_factors(quad, a, b, f_point);
+    if (result.f_unoccluded > 0) {
+        const auto [lo, hi] = std::minmax_element(f_point.begin(), f_point.begin() + quad.count);
+        result.f_spread = *hi - *lo;
+    }
+    return result;
+}
+
+} // namespace
+
+PairFormFactor triangle_form_factor_visible(const OrientedTriangle& a, const OrientedTriangle& b,
+                                            int level) {
     PointValues f_point{};
-    return point_form_factors(make_quadrature(a.v, level), a, b, f_point);
+    PairFormFactor result = unoccluded(a, b, make_quadrature(a.v, level), f_point);
+    result.f = result.f_unoccluded;
+    return result;
 }
 
 PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTriangle& b,
@@ -176,12 +194,9 @@ PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTri
                                     const RowSettings& settings) {
     const Quadrature quad = make_quadrature(a.v, level);
     PointValues f_point{};
-    PairFormFactor result;
-    result.f_unoccluded = point_form_factors(quad, a, b, f_point);
+    PairFormFactor result = unoccluded(a, b, quad, f_point);
     if (result.f_unoccluded <= 0)
         return result;
-    const auto [lo, hi] = std::minmax_element(f_point.begin(), f_point.begin() + quad.count);
-    result.f_spread = *hi - *lo;
     Pcg32 rng = Pcg32::for_stream(RngPurpose::form_factor_visibility, key_a, key_b, 0,
                                   settings.seed);
     const PairVisibility v =
@@ -258,7 +273,7 @@ Row compute_row(const ElementGeometry& geo, const VisibilityQuery& visibility, s
             triangle_form_factor(ti, tj, level, visibility, geo.offset, i, jj, settings);
         dense[j] = float(pf.f);
         if (near[j] && pf.f_unoccluded > 0)
-            near_coarse[j] = triangle_form_factor_unoccluded(ti, tj, settings.quadrature_level) *
+            near_coarse[j] = triangle_form_factor_visible(ti, tj, settings.quadrature_level).f *
                              (pf.f / pf.f_unoccluded);
     });
     rescale_far_pairs(dense, near, near_coarse);

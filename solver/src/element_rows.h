@@ -61,9 +61,10 @@ PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTri
                                     std::uint64_t key_a, std::uint64_t key_b,
                                     const RowSettings& settings);
 
-/// Unoccluded F_ab by the rule of \p level (no rays).
-double triangle_form_factor_unoccluded(const OrientedTriangle& a, const OrientedTriangle& b,
-                                       int level);
+/// F_ab by the rule of \p level for a pair known to be fully visible (no rays): the part of a
+/// fully visible link, whose own rays were all open.
+PairFormFactor triangle_form_factor_visible(const OrientedTriangle& a, const OrientedTriangle& b,
+                                            int level);
 
 /// True if any vertex of \p a lies in front of \p b's plane by more than \p eps.
 bool in_front(const OrientedTriangle& a, const OrientedTriangle& b, double eps);

@@ -40,13 +40,15 @@ LinkSet::LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, const Visibility
     : h_(h), twin_(twin), visibility_(visibility), lights_(lights), sun_(sun),
       settings_(settings) {}
 
-Link LinkSet::make_link(std::uint32_t q, std::uint32_t p) const {
-    if (centres_occluded(q, p)) // a plane between them proves them dark (with clusters)
+Link LinkSet::make_link(std::uint32_t q, std::uint32_t p, bool visible) const {
+    if (!visible && centres_occluded(q, p)) // a plane between them proves them dark
         return {q, p, 0.0f, 0.0f, 0};
     const OrientedTriangle a = oriented(h_, q), b = oriented(h_, p);
     const int level = quadrature_level_for(a, b, settings_.rows);
-    PairFormFactor pf =
-        triangle_form_factor(a, b, level, visibility_, settings_.offset, q, p, settings_.rows);
+    const PairFormFactor pf =
+        visible ? triangle_form_factor_visible(a, b, level)
+                : triangle_form_factor(a, b, level, visibility_, settings_.offset, q, p,
+                                       settings_.rows);
     return {q, p, float(pf.f), float(pf.f_spread), std::uint8_t(pf.partial ? 1 : 0)};
 }
 
@@ -224,16 +226,21 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         for (int c = 0; c < 4; ++c) {
             fresh.push_back(std::uint32_t(next.size()));
             next_kept.push_back(0);
+            // The child keeps its parent's visibility class until it is made.
             if (decision[k] == split_receiver)
-                next.push_back({std::uint32_t(h_.first_child[l.receiver] + c), l.source, 0, 0, 0});
+                next.push_back(
+                    {std::uint32_t(h_.first_child[l.receiver] + c), l.source, 0, 0, l.partial});
             else
-                next.push_back({l.receiver, std::uint32_t(h_.first_child[l.source] + c), 0, 0, 0});
+                next.push_back(
+                    {l.receiver, std::uint32_t(h_.first_child[l.source] + c), 0, 0, l.partial});
         }
     }
     parallel_for_index(fresh.size(), 16, [&](std::size_t f) {
+        // The parts of a fully visible pair are fully visible (Hanrahan et al. 1991): they
+        // take its rays' verdict instead of casting their own.
         Link& l = next[fresh[f]];
         if (faces(h_, l.receiver, l.source, 1e-9 * h_.diagonal))
-            l = make_link(l.receiver, l.source);
+            l = make_link(l.receiver, l.source, l.partial == 0);
     });
     // Drop the new links that carry nothing (the kept ones all carry something), in place.
     std::size_t m = 0;

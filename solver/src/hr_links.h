@@ -135,7 +135,8 @@ public:
     const std::vector<std::uint32_t>& receiver_offsets() const { return offsets_; }
 
 private:
-    Link make_link(std::uint32_t receiver, std::uint32_t source) const;
+    /// \p visible: the pair is a part of a fully visible one (no rays).
+    Link make_link(std::uint32_t receiver, std::uint32_t source, bool visible = false) const;
     LightLink make_light_link(std::uint32_t receiver, std::uint32_t light) const;
     LightLink make_sun_link(std::uint32_t receiver) const;
     void subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<float>& b_range);

@@ -2,7 +2,8 @@
 // of boxes on its two sides mutually invisible only if every segment between them is blocked;
 // checked against Embree on random segments, between random boxes in the offices of a floor
 // whose partitions have doors, cabinets standing against them (coplanar faces overlapping the
-// partition) and tessellations that meet at T-vertices.
+// partition) and tessellations that meet at T-vertices, as generated and turned to general
+// planes.
 
 #include <algorithm>
 #include <array>
@@ -57,21 +58,42 @@ Vec3 random_point(std::mt19937& rng, const Box& b) {
             b.lo.z + u(rng) * (b.hi.z - b.lo.z)};
 }
 
-// The plane of the roots whose normal is ±axis and whose centroid lies at \p at along it.
+/// A rotation of the floor: 30° about z, then \p tilt_deg about x (the identity at 0, 0).
+struct Rotation {
+    double yaw = 0, tilt = 0; ///< radians
+    Vec3 operator()(const Vec3& p) const {
+        const Vec3 a(p.x * std::cos(yaw) - p.y * std::sin(yaw),
+                     p.x * std::sin(yaw) + p.y * std::cos(yaw), p.z);
+        return {a.x, a.y * std::cos(tilt) - a.z * std::sin(tilt),
+                a.y * std::sin(tilt) + a.z * std::cos(tilt)};
+    }
+};
+
+// The plane of the roots whose normal is the rotated ±axis and whose centroid lies at \p at
+// along it.
 std::uint32_t plane_at(const solver::Hierarchy& h, const solver::OccluderPlanes& planes,
-                       std::size_t axis, double at) {
+                       const Rotation& rotate, std::size_t axis, double at) {
+    Vec3 unit;
+    unit[axis] = 1.0;
+    const Vec3 n = rotate(unit);
     for (std::uint32_t r = 0; r < h.root_count; ++r)
-        if (std::abs(std::abs(h.normal[r][axis]) - 1.0) < 1e-9 &&
-            std::abs(h.centroid(r)[axis] - at) < 1e-9)
+        if (std::abs(std::abs(dot(h.normal[r], n)) - 1.0) < 1e-6 &&
+            std::abs(dot(h.centroid(r), n) - at) < 1e-6)
             return planes.plane_of_root(r);
     ADD_FAILURE() << "no root in the plane " << at;
     return 0;
 }
 
-TEST(Occluders, CertifyOnlyBlockedShaftsAndMostAcrossAPartition) {
+class Occluders : public ::testing::TestWithParam<Rotation> {};
+
+TEST_P(Occluders, CertifyOnlyBlockedShaftsAndMostAcrossAPartition) {
+    const Rotation rotate = GetParam();
     bench::OfficeParams params; // 2 × 2 offices, doors in both partitions
     params.tessellation = 3;
     Scene scene = bench::office_floor(params);
+    for (Polygon& polygon : scene.polygons)
+        for (Vec3& v : polygon.vertices)
+            v = rotate(v);
     bench::mesh_input_as_is(scene);
     const RadiosityMesh mesh = mesher::build_mesh(scene, test::quiet_context());
     const solver::Hierarchy h(mesh);
@@ -86,13 +108,19 @@ TEST(Occluders, CertifyOnlyBlockedShaftsAndMostAcrossAPartition) {
         const int k = (pair / 2) % 2;
         const Box a = along_x ? random_box(rng, 0, k) : random_box(rng, k, 0);
         const Box b = along_x ? random_box(rng, 1, k) : random_box(rng, k, 1);
-        const std::uint32_t plane =
-            along_x ? plane_at(h, planes, 0, k_room_w) : plane_at(h, planes, 1, k_room_d);
-        const auto ca = a.corners(), cb = b.corners();
+        const std::uint32_t plane = along_x ? plane_at(h, planes, rotate, 0, k_room_w)
+                                            : plane_at(h, planes, rotate, 1, k_room_d);
+        auto corners = [&](const Box& box) {
+            std::vector<Vec3> out = box.corners();
+            for (Vec3& c : out)
+                c = rotate(c);
+            return out;
+        };
+        const auto ca = corners(a), cb = corners(b);
         const bool blocks = planes.blocks(plane, ca, cb);
         std::vector<Segment> segments;
         for (int s = 0; s < 256; ++s) {
-            const Vec3 from = random_point(rng, a), to = random_point(rng, b);
+            const Vec3 from = rotate(random_point(rng, a)), to = rotate(random_point(rng, b));
             segments.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
         }
         std::vector<std::uint8_t> blocked(segments.size());
@@ -104,7 +132,7 @@ TEST(Occluders, CertifyOnlyBlockedShaftsAndMostAcrossAPartition) {
         open += seen_open;
         EXPECT_FALSE(blocks && seen_open) << "pair " << pair << " certified, but a ray is open";
         // Both boxes on one side: no certificate.
-        EXPECT_FALSE(planes.blocks(plane, ca, a.corners())) << "pair " << pair;
+        EXPECT_FALSE(planes.blocks(plane, ca, ca)) << "pair " << pair;
     }
     std::printf("occluders: %d of %d pairs across a partition certified, %d with an open ray\n",
                 certified, pairs, open);
@@ -113,6 +141,11 @@ TEST(Occluders, CertifyOnlyBlockedShaftsAndMostAcrossAPartition) {
     EXPECT_GT(certified, pairs / 2);
     EXPECT_GT(open, 0);
 }
+
+// The floor as generated (axis-aligned planes), and turned and tilted (general planes).
+INSTANTIATE_TEST_SUITE_P(Frames, Occluders,
+                         ::testing::Values(Rotation{0.0, 0.0},
+                                           Rotation{k_pi / 6.0, 10.0 * k_pi / 180.0}));
 
 } // namespace
 } // namespace penumbra

@@ -226,57 +226,71 @@ EmbreeScene::EmbreeScene(const RadiosityMesh& mesh) : impl_(std::make_unique<Imp
 
 EmbreeScene::~EmbreeScene() = default;
 
-void EmbreeScene::occluded(std::span<const Segment> segments, std::span<std::uint8_t> out) const {
-    if (segments.size() != out.size())
-        throw InternalError(fmt::format("EmbreeScene::occluded: {} segments but {} results",
-                                        segments.size(), out.size()));
+namespace {
+
+/// The ray of an RTCRay or RTCRayHit (whose hit it marks empty).
+RTCRay& ray_of(RTCRay& ray) { return ray; }
+RTCRay& ray_of(RTCRayHit& rayhit) {
+    rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    return rayhit.ray;
+}
+
+} // namespace
+
+// Traces \p segments in batches of up to 256 Rays (RTCRay or RTCRayHit) through
+// trace(context, rays, count), Embree's \p call, then read(index of the segment, its ray).
+template <typename Ray, typename Trace, typename Read>
+void EmbreeScene::trace_batches(const char* what, const char* call,
+                                std::span<const Segment> segments, std::size_t results,
+                                Trace&& trace, Read&& read) const {
+    if (segments.size() != results)
+        throw InternalError(fmt::format("EmbreeScene::{}: {} segments but {} results", what,
+                                        segments.size(), results));
     constexpr std::size_t k_batch = 256;
-    std::array<RTCRay, k_batch> rays;
+    std::array<Ray, k_batch> rays;
     RTCIntersectContext context;
     for (std::size_t begin = 0; begin < segments.size(); begin += k_batch) {
         const std::size_t count = std::min(k_batch, segments.size() - begin);
         for (std::size_t i = 0; i < count; ++i) {
             const Segment& s = segments[begin + i];
-            rays[i] = make_ray(s.origin, s.direction, s.tnear, s.tfar);
-            rays[i].id = unsigned(i);
+            RTCRay& ray = ray_of(rays[i]);
+            ray = make_ray(s.origin, s.direction, s.tnear, s.tfar);
+            ray.id = unsigned(i);
         }
         rtcInitIntersectContext(&context);
-        rtcOccluded1M(impl_->scene.get(), &context, rays.data(), unsigned(count), sizeof(RTCRay));
-        // Embree marks an occluded ray by setting tfar to -inf.
+        trace(&context, rays.data(), unsigned(count));
         for (std::size_t i = 0; i < count; ++i)
-            out[begin + i] = rays[i].tfar == -std::numeric_limits<float>::infinity() ? 1 : 0;
+            read(begin + i, rays[i]);
     }
     impl_->rays.fetch_add(segments.size(), std::memory_order_relaxed);
-    impl_->errors.throw_if_failed("rtcOccluded1M");
+    impl_->errors.throw_if_failed(call);
+}
+
+void EmbreeScene::occluded(std::span<const Segment> segments, std::span<std::uint8_t> out) const {
+    trace_batches<RTCRay>(
+        "occluded", "rtcOccluded1M", segments, out.size(),
+        [&](RTCIntersectContext* context, RTCRay* rays, unsigned count) {
+            rtcOccluded1M(impl_->scene.get(), context, rays, count, sizeof(RTCRay));
+        },
+        // Embree marks an occluded ray by setting tfar to -inf.
+        [&](std::size_t k, const RTCRay& ray) {
+            out[k] = ray.tfar == -std::numeric_limits<float>::infinity() ? 1 : 0;
+        });
 }
 
 void EmbreeScene::first_hit(std::span<const Segment> segments,
                             std::span<std::int32_t> hit) const {
-    if (segments.size() != hit.size())
-        throw InternalError(fmt::format("EmbreeScene::first_hit: {} segments but {} results",
-                                        segments.size(), hit.size()));
-    constexpr std::size_t k_batch = 256;
-    std::array<RTCRayHit, k_batch> rays;
-    RTCIntersectContext context;
-    for (std::size_t begin = 0; begin < segments.size(); begin += k_batch) {
-        const std::size_t count = std::min(k_batch, segments.size() - begin);
-        for (std::size_t i = 0; i < count; ++i) {
-            const Segment& s = segments[begin + i];
-            rays[i].ray = make_ray(s.origin, s.direction, s.tnear, s.tfar);
-            rays[i].ray.id = unsigned(i);
-            rays[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rays[i].hit.primID = RTC_INVALID_GEOMETRY_ID;
-        }
-        rtcInitIntersectContext(&context);
-        rtcIntersect1M(impl_->scene.get(), &context, rays.data(), unsigned(count),
-                       sizeof(RTCRayHit));
-        for (std::size_t i = 0; i < count; ++i)
-            hit[begin + i] = rays[i].hit.geomID == RTC_INVALID_GEOMETRY_ID
-                                 ? -1
-                                 : std::int32_t(mesh_.geometry_elements[rays[i].hit.primID]);
-    }
-    impl_->rays.fetch_add(segments.size(), std::memory_order_relaxed);
-    impl_->errors.throw_if_failed("rtcIntersect1M");
+    trace_batches<RTCRayHit>(
+        "first_hit", "rtcIntersect1M", segments, hit.size(),
+        [&](RTCIntersectContext* context, RTCRayHit* rays, unsigned count) {
+            rtcIntersect1M(impl_->scene.get(), context, rays, count, sizeof(RTCRayHit));
+        },
+        [&](std::size_t k, const RTCRayHit& ray) {
+            hit[k] = ray.hit.geomID == RTC_INVALID_GEOMETRY_ID
+                         ? -1
+                         : std::int32_t(mesh_.geometry_elements[ray.hit.primID]);
+        });
 }
 
 std::uint64_t EmbreeScene::rays_traced() const {

@@ -385,8 +385,10 @@ bool LinkSet::certified_occluded(NodeRef q, NodeRef p,
                                  std::span<const std::int32_t> hits) const {
     if (occluders_.size() == 0)
         return false;
-    std::vector<std::uint32_t> tried;
-    std::vector<Vec3> a, b;
+    // Called for most new pairs: no allocation per call.
+    thread_local std::vector<std::uint32_t> tried;
+    thread_local std::vector<Vec3> a, b;
+    tried.clear();
     const Vec3 cq = node_centre(q), cp = node_centre(p);
     for (const std::int32_t e : hits) {
         if (e < 0 || std::size_t(e) >= h_.root_count)

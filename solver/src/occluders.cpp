@@ -32,6 +32,33 @@ std::pair<Vec3, double> canonical_plane(const Hierarchy& h, std::uint32_t r) {
 double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 double length2(double x, double y) { return std::sqrt(x * x + y * y); }
 
+/// The grid coordinate of \p x along an axis of \p n cells of size \p cell from \p origin.
+std::uint32_t grid_coordinate(double x, double origin, double cell, std::uint32_t n) {
+    return std::uint32_t(std::clamp((x - origin) / cell, 0.0, double(n - 1)));
+}
+
+/// Calls fn(y · nx + x) for the cells (x0, y0)–(x1, y1) of \p range until it returns true;
+/// returns whether it did.
+template <typename Fn>
+bool any_cell(const std::array<std::uint32_t, 4>& range, std::uint32_t nx, Fn&& fn) {
+    for (std::uint32_t y = range[1]; y <= range[3]; ++y)
+        for (std::uint32_t x = range[0]; x <= range[2]; ++x)
+            if (fn(std::size_t(y) * nx + x))
+                return true;
+    return false;
+}
+
+/// Narrows [t0, t1] to the t where f0 + t · df >= 0 (Cyrus–Beck); false if no t is.
+bool clip_to_half_plane(double f0, double df, double& t0, double& t1) {
+    if (df == 0)
+        return f0 >= 0;
+    if (df > 0)
+        t0 = std::max(t0, -f0 / df);
+    else
+        t1 = std::min(t1, -f0 / df);
+    return true;
+}
+
 } // namespace
 
 OccluderPlanes::OccluderPlanes(const Hierarchy& h, const std::vector<std::int32_t>& twin) {
@@ -188,13 +215,10 @@ void OccluderPlanes::add_plane(Plane& plane, const Hierarchy& h,
 
 std::array<std::uint32_t, 4> OccluderPlanes::cells_of(const Plane& plane, Point2 lo,
                                                       Point2 hi) const {
-    auto cell = [&](double x, double origin, std::uint32_t n) {
-        return std::uint32_t(std::clamp((x - origin) / plane.cell, 0.0, double(n - 1)));
-    };
-    return {cell(lo.x - tolerance_, plane.lo.x, plane.nx),
-            cell(lo.y - tolerance_, plane.lo.y, plane.ny),
-            cell(hi.x + tolerance_, plane.lo.x, plane.nx),
-            cell(hi.y + tolerance_, plane.lo.y, plane.ny)};
+    return {grid_coordinate(lo.x - tolerance_, plane.lo.x, plane.cell, plane.nx),
+            grid_coordinate(lo.y - tolerance_, plane.lo.y, plane.cell, plane.ny),
+            grid_coordinate(hi.x + tolerance_, plane.lo.x, plane.cell, plane.nx),
+            grid_coordinate(hi.y + tolerance_, plane.lo.y, plane.cell, plane.ny)};
 }
 
 template <typename BoxOf>
@@ -206,20 +230,20 @@ void OccluderPlanes::fill_cells(const Plane& plane, std::vector<std::uint32_t>& 
     const std::size_t base = begin.size() - 1;
     begin.resize(base + cells + 1, 0);
     std::vector<std::uint32_t> counts(cells, 0);
-    auto for_cells = [&](std::size_t i, auto&& fn) {
-        const auto c = box_of(i);
-        for (std::uint32_t y = c[1]; y <= c[3]; ++y)
-            for (std::uint32_t x = c[0]; x <= c[2]; ++x)
-                fn(std::size_t(y) * plane.nx + x);
-    };
     for (std::size_t i = first; i < last; ++i)
-        for_cells(i, [&](std::size_t c) { ++counts[c]; });
+        any_cell(box_of(i), plane.nx, [&](std::size_t c) {
+            ++counts[c];
+            return false;
+        });
     for (std::size_t c = 0; c < cells; ++c)
         begin[base + c + 1] = begin[base + c] + counts[c];
     items.resize(begin.back());
     std::vector<std::uint32_t> next(begin.begin() + std::ptrdiff_t(base), begin.end() - 1);
     for (std::size_t i = first; i < last; ++i)
-        for_cells(i, [&](std::size_t c) { items[next[c]++] = std::uint32_t(i); });
+        any_cell(box_of(i), plane.nx, [&](std::size_t c) {
+            items[next[c]++] = std::uint32_t(i);
+            return false;
+        });
 }
 
 void OccluderPlanes::add_uncovered(const Plane& plane, Point2 a, Point2 b, Point2 out) {
@@ -227,33 +251,27 @@ void OccluderPlanes::add_uncovered(const Plane& plane, Point2 a, Point2 b, Point
     const Point2 qa{a.x + 2 * tolerance_ * out.x, a.y + 2 * tolerance_ * out.y};
     const Point2 qb{b.x + 2 * tolerance_ * out.x, b.y + 2 * tolerance_ * out.y};
     std::vector<std::pair<double, double>> covered;
-    const auto c = cells_of(plane, {std::min(qa.x, qb.x), std::min(qa.y, qb.y)},
-                            {std::max(qa.x, qb.x), std::max(qa.y, qb.y)});
-    for (std::uint32_t y = c[1]; y <= c[3]; ++y)
-        for (std::uint32_t x = c[0]; x <= c[2]; ++x) {
-            const std::size_t cell = plane.cell_begin + std::size_t(y) * plane.nx + x;
-            for (std::uint32_t i = cell_triangles_begin_[cell];
-                 i < cell_triangles_begin_[cell + 1]; ++i) {
-                const auto& t = triangles_[cell_triangles_[i]];
-                double t0 = 0, t1 = 1;
-                for (std::size_t k = 0; k < 3 && t0 < t1; ++k) {
-                    // Inside a counter-clockwise triangle: left of every edge.
-                    const Point2 p = t[k], q = t[(k + 1) % 3];
-                    const double f0 = cross2(q.x - p.x, q.y - p.y, qa.x - p.x, qa.y - p.y);
-                    const double df = cross2(q.x - p.x, q.y - p.y, qb.x - qa.x, qb.y - qa.y);
-                    if (df == 0) {
-                        if (f0 < 0)
-                            t1 = -1;
-                    } else if (df > 0) {
-                        t0 = std::max(t0, -f0 / df);
-                    } else {
-                        t1 = std::min(t1, -f0 / df);
-                    }
-                }
-                if (t0 < t1)
-                    covered.emplace_back(t0, t1);
+    const auto range = cells_of(plane, {std::min(qa.x, qb.x), std::min(qa.y, qb.y)},
+                                {std::max(qa.x, qb.x), std::max(qa.y, qb.y)});
+    any_cell(range, plane.nx, [&](std::size_t local) {
+        const std::size_t cell = plane.cell_begin + local;
+        for (std::uint32_t i = cell_triangles_begin_[cell]; i < cell_triangles_begin_[cell + 1];
+             ++i) {
+            const auto& t = triangles_[cell_triangles_[i]];
+            double t0 = 0, t1 = 1;
+            for (std::size_t k = 0; k < 3 && t0 < t1; ++k) {
+                // Inside a counter-clockwise triangle: left of every edge.
+                const Point2 p = t[k], q = t[(k + 1) % 3];
+                if (!clip_to_half_plane(cross2(q.x - p.x, q.y - p.y, qa.x - p.x, qa.y - p.y),
+                                        cross2(q.x - p.x, q.y - p.y, qb.x - qa.x, qb.y - qa.y),
+                                        t0, t1))
+                    t1 = -1;
             }
+            if (t0 < t1)
+                covered.emplace_back(t0, t1);
         }
+        return false;
+    });
     std::sort(covered.begin(), covered.end());
     const double length = length2(b.x - a.x, b.y - a.y);
     auto point = [&](double t) { return Point2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}; };
@@ -363,20 +381,12 @@ bool OccluderPlanes::blocks(std::uint32_t pi, std::span<const Vec3> a,
     }
     auto enters = [&](const std::array<Point2, 2>& s) {
         double t0 = 0, t1 = 1;
-        for (const Side& side : sides) {
-            const double f0 = side.nx * s[0].x + side.ny * s[0].y - side.offset;
-            const double df = side.nx * (s[1].x - s[0].x) + side.ny * (s[1].y - s[0].y);
-            if (df == 0) {
-                if (f0 < 0)
-                    return false;
-            } else if (df > 0) {
-                t0 = std::max(t0, -f0 / df);
-            } else {
-                t1 = std::min(t1, -f0 / df);
-            }
-            if (t0 > t1)
+        for (const Side& side : sides)
+            if (!clip_to_half_plane(side.nx * s[0].x + side.ny * s[0].y - side.offset,
+                                    side.nx * (s[1].x - s[0].x) + side.ny * (s[1].y - s[0].y),
+                                    t0, t1) ||
+                t0 > t1)
                 return false;
-        }
         return true;
     };
     double x0 = hull[0].x, x1 = x0, y0 = hull[0].y, y1 = y0;
@@ -386,22 +396,18 @@ bool OccluderPlanes::blocks(std::uint32_t pi, std::span<const Vec3> a,
         y0 = std::min(y0, p.y);
         y1 = std::max(y1, p.y);
     }
-    auto cell_x = [&](double v) {
-        return std::uint32_t(
-            std::clamp((v - plane.lo.x) / plane.cell, 0.0, double(plane.nx - 1)));
-    };
-    auto cell_y = [&](double v) {
-        return std::uint32_t(
-            std::clamp((v - plane.lo.y) / plane.cell, 0.0, double(plane.ny - 1)));
-    };
-    const std::uint32_t cx0 = cell_x(x0), cx1 = cell_x(x1), cy0 = cell_y(y0), cy1 = cell_y(y1);
-    for (std::uint32_t cy = cy0; cy <= cy1; ++cy)
-        for (std::uint32_t cx = cx0; cx <= cx1; ++cx) {
-            const std::size_t c = plane.cell_begin + std::size_t(cy) * plane.nx + cx;
+    auto cell_x = [&](double v) { return grid_coordinate(v, plane.lo.x, plane.cell, plane.nx); };
+    auto cell_y = [&](double v) { return grid_coordinate(v, plane.lo.y, plane.cell, plane.ny); };
+    const bool entered =
+        any_cell({cell_x(x0), cell_y(y0), cell_x(x1), cell_y(y1)}, plane.nx, [&](std::size_t local) {
+            const std::size_t c = plane.cell_begin + local;
             for (std::uint32_t i = cell_segments_begin_[c]; i < cell_segments_begin_[c + 1]; ++i)
                 if (enters(segments_[cell_segments_[i]]))
-                    return false;
-        }
+                    return true;
+            return false;
+        });
+    if (entered)
+        return false;
     // The hull then lies inside the union or outside it: inside if its centre is.
     if (centre.x < plane.lo.x || centre.y < plane.lo.y)
         return false;

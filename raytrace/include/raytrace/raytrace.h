@@ -40,6 +40,11 @@ public:
     const RadiosityMesh& mesh() const { return mesh_; }
 
 private:
+    /// The batched traversal occluded() and first_hit() share (embree_scene.cpp).
+    template <typename Ray, typename Trace, typename Read>
+    void trace_batches(const char* what, const char* call, std::span<const Segment> segments,
+                       std::size_t results, Trace&& trace, Read&& read) const;
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
     const RadiosityMesh& mesh_;

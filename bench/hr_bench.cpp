@@ -18,7 +18,7 @@
 //
 // Usage: hr_bench [--sizes 1k,2k,8k,32k] [--max-seconds S] [--threads N] [--epsilon E]
 //                 [--clustering auto|on|off] [--offices NXxNY] [--tessellation K]
-//                 [--raw-rays N] [--no-solve] [-v]
+//                 [--min-area A] [--raw-rays N] [--no-solve] [-v]
 
 #include "app/pipeline.h"
 #include "core/error.h"
@@ -68,6 +68,9 @@ struct Options {
     std::string clustering; ///< empty: the scene's (auto)
     std::string offices;    ///< "NXxNY": this many offices instead of the size's
     int tessellation = 0;   ///< > 0: this tessellation instead of the size's
+    /// > 0: solver.min_area (m²) instead of the scene's default ((diagonal / 200)²): a few
+    /// offices with the minimum area of a bigger floor refine as one of its offices does.
+    double min_area = 0;
     std::int64_t raw_rays = 1'000'000;
     bool no_solve = false;
     bool verbose = false;
@@ -211,6 +214,8 @@ Row run_size(std::int64_t target, const Options& options, const Context& ctx) {
         scene.solver.epsilon = options.epsilon;
     if (!options.clustering.empty())
         scene.solver.clustering = options.clustering;
+    if (options.min_area > 0)
+        scene.solver.min_area = options.min_area;
     validate_scene(scene);
     row.triangles = bench::input_triangle_count(scene);
     auto stage = [&](double& seconds, const char* name, const std::function<void()>& run) {
@@ -301,6 +306,8 @@ void run_in_child(const std::string& size, const Options& options) {
         args.insert(args.end(), {"--offices", options.offices});
     if (options.tessellation > 0)
         args.insert(args.end(), {"--tessellation", std::to_string(options.tessellation)});
+    if (options.min_area > 0)
+        args.insert(args.end(), {"--min-area", fmt::format("{}", options.min_area)});
     if (options.no_solve)
         args.push_back("--no-solve");
     if (options.verbose)
@@ -334,6 +341,9 @@ int main(int argc, char** argv) {
     cli.add_option("--tessellation", o.tessellation,
                    "split every rectangle k x k (2k^2 triangles) instead of the size's k")
         ->check(CLI::Range(1, 64));
+    cli.add_option("--min-area", o.min_area,
+                   "solver.min_area in m^2 (default: the scene's, (diagonal / 200)^2)")
+        ->check(CLI::PositiveNumber);
     cli.add_option("--raw-rays", o.raw_rays, "segments for the raw throughput")
         ->check(CLI::Range(std::int64_t(1), std::int64_t(1) << 32));
     cli.add_flag("--no-solve", o.no_solve,

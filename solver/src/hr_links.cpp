@@ -42,14 +42,14 @@ LinkSet::LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, const Visibility
 
 Link LinkSet::make_link(std::uint32_t q, std::uint32_t p, bool visible) const {
     if (!visible && centres_occluded(q, p)) // a plane between them proves them dark
-        return {q, p, 0.0f, 0.0f, 0};
+        return {q, p, 0.0f, 0.0f, false};
     const OrientedTriangle a = oriented(h_, q), b = oriented(h_, p);
     const int level = quadrature_level_for(a, b, settings_.rows);
     const PairFormFactor pf =
         visible ? triangle_form_factor_visible(a, b, level)
                 : triangle_form_factor(a, b, level, visibility_, settings_.offset, q, p,
                                        settings_.rows);
-    return {q, p, float(pf.f), float(pf.f_spread), std::uint8_t(pf.partial ? 1 : 0)};
+    return {q, p, float(pf.f), float(pf.f_spread), pf.partial};
 }
 
 LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
@@ -189,8 +189,8 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         const double estimate =
             (settings_.oracle == Oracle::bf
                  ? double(link.ff) * b_source
-                 : double(link.spread) * b_source + double(link.ff) * b_range[link.source]) *
-            (link.partial ? 2.0 : 1.0);
+                 : double(link.spread()) * b_source + double(link.ff) * b_range[link.source]) *
+            (link.partial() ? 2.0 : 1.0);
         if (estimate <= settings_.threshold)
             return;
         const double aq = h_.area[link.receiver], ap = h_.area[link.source];
@@ -229,10 +229,10 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
             // The child keeps its parent's visibility class until it is made.
             if (decision[k] == split_receiver)
                 next.push_back(
-                    {std::uint32_t(h_.first_child[l.receiver] + c), l.source, 0, 0, l.partial});
+                    {std::uint32_t(h_.first_child[l.receiver] + c), l.source, 0, 0, l.partial()});
             else
                 next.push_back(
-                    {l.receiver, std::uint32_t(h_.first_child[l.source] + c), 0, 0, l.partial});
+                    {l.receiver, std::uint32_t(h_.first_child[l.source] + c), 0, 0, l.partial()});
         }
     }
     parallel_for_index(fresh.size(), 16, [&](std::size_t f) {
@@ -240,7 +240,7 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         // take its rays' verdict instead of casting their own.
         Link& l = next[fresh[f]];
         if (faces(h_, l.receiver, l.source, 1e-9 * h_.diagonal))
-            l = make_link(l.receiver, l.source, l.partial == 0);
+            l = make_link(l.receiver, l.source, !l.partial());
     });
     // Drop the new links that carry nothing (the kept ones all carry something), in place.
     std::size_t m = 0;

@@ -3,6 +3,7 @@
 // source node to a receiver node with a form factor and a visibility class, refined by a
 // power oracle.
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -19,12 +20,24 @@
 
 namespace penumbra::solver {
 
+/// 16 bytes: a big scene's links are most of the solve's memory (the 1M office floor would
+/// make hundreds of millions), so the occlusion flag is the sign bit of the spread.
 struct Link {
     std::uint32_t receiver = 0, source = 0;
-    float ff = 0;             ///< F from receiver to source: H_receiver += ff · B_source
-    float spread = 0;         ///< variation of the point form factor over the receiver
-    std::uint8_t partial = 0; ///< partly occluded
+    float ff = 0; ///< F from receiver to source: H_receiver += ff · B_source
+
+    Link() = default;
+    Link(std::uint32_t q, std::uint32_t p, float f, float spread_, bool partial_)
+        : receiver(q), source(p), ff(f), spread_bits(partial_ ? -spread_ : spread_) {}
+    /// Variation of the point form factor over the receiver (≥ 0).
+    float spread() const { return std::abs(spread_bits); }
+    /// Partly occluded.
+    bool partial() const { return std::signbit(spread_bits); }
+
+private:
+    float spread_bits = 0; ///< the spread, negative (−0 for 0) for a partly occluded link
 };
+static_assert(sizeof(Link) == 16);
 
 struct LightLink {
     /// light: index into the point lights, or their count for the sun.

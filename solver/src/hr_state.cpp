@@ -18,7 +18,7 @@ namespace penumbra::solver {
 namespace {
 
 // Version 4: cluster links index the face-cluster tree, and their kernels are calibrated.
-constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '4'};
+constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '5'};
 
 class Writer {
 public:

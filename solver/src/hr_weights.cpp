@@ -15,7 +15,7 @@ namespace penumbra::solver {
 namespace {
 
 // One link as one word for the hash (far end, form factor's bits, occlusion): one mix per link.
-std::uint64_t link_word(std::uint32_t far_end, float ff, std::uint8_t partial) {
+std::uint64_t link_word(std::uint32_t far_end, float ff, bool partial) {
     return (std::uint64_t(far_end) << 32 | std::bit_cast<std::uint32_t>(ff)) ^
            (std::uint64_t(partial) << 63) ^ 0x632be59bd9b4e019ULL;
 }
@@ -29,11 +29,11 @@ std::vector<std::uint64_t> link_signatures(const Hierarchy& h, const LinkSet& li
     parallel_for_index(h.size(), 256, [&](std::size_t a) {
         std::uint64_t s = mix64(a);
         for (std::uint32_t k = by_receiver[a]; k < by_receiver[a + 1]; ++k)
-            s = mix64(s ^ link_word(all[k].source, all[k].ff, all[k].partial));
+            s = mix64(s ^ link_word(all[k].source, all[k].ff, all[k].partial()));
         s = mix64(s ^ 0x9e3779b97f4a7c15ULL); // receiving and sending links differ
         for (std::uint32_t i = by_source.start[a]; i < by_source.start[a + 1]; ++i) {
             const Link& l = all[by_source.order[i]];
-            s = mix64(s ^ link_word(l.receiver, l.ff, l.partial));
+            s = mix64(s ^ link_word(l.receiver, l.ff, l.partial()));
         }
         sig[a] = s;
     });
@@ -88,7 +88,7 @@ RawWeight raw_weight(const Hierarchy& h, const LinkSet& links, const LinksBySour
     double seen = 0, linked = 0;
     for (std::uint32_t k = by_receiver[a]; k < by_receiver[a + 1]; ++k) {
         const Link& l = all[k];
-        seen += l.partial ? double(l.ff) : centroid_form_factor(h, ends, x, l.source);
+        seen += l.partial() ? double(l.ff) : centroid_form_factor(h, ends, x, l.source);
         linked += l.ff;
     }
     if (linked > 0)
@@ -97,7 +97,7 @@ RawWeight raw_weight(const Hierarchy& h, const LinkSet& links, const LinksBySour
     for (std::uint32_t i = by_source.start[a]; i < by_source.start[a + 1]; ++i) {
         const Link& l = all[by_source.order[i]];
         const double even = h.area[l.receiver] * l.ff / h.area[a]; // F(a → r)
-        sent += l.partial ? even : centroid_form_factor(h, ends, x, l.receiver);
+        sent += l.partial() ? even : centroid_form_factor(h, ends, x, l.receiver);
         share += even;
     }
     if (share > 0)

@@ -5,7 +5,9 @@
 #include "hr_links.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <span>
 
 #include "core/parallel.h"
 #include "core/rng.h"
@@ -324,25 +326,72 @@ bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range,
     return changed;
 }
 
-// By receiver, then source: a counting sort by receiver (linear), then each receiver's few
-// links by source, in parallel.
+namespace {
+
+// Permutes \p v in place so that bucket(v[i]) does not decrease, bucket b taking
+// [start[b], start[b + 1]) (American flag sort: one swap puts a link in its bucket for good).
+template <typename Bucket>
+void flag_permute(std::span<Link> v, std::span<const std::uint32_t> start, Bucket bucket) {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::size_t b = 0; b + 1 < start.size(); ++b)
+        while (next[b] < start[b + 1]) {
+            const std::size_t k = bucket(v[next[b]]);
+            if (k == b)
+                ++next[b];
+            else
+                std::swap(v[next[b]], v[next[k]++]);
+        }
+}
+
+} // namespace
+
+// By receiver, then source, in place (no second copy of what is most of a big solve's
+// memory): an American flag sort on the receiver's high bits (at most 1024 buckets, whose
+// write positions stay in cache), then on the rest within each such bucket in parallel, then
+// each receiver's few links by their contents (a total order, so the result does not depend
+// on the order the swaps left them in).
 void LinkSet::sort_and_index() {
     offsets_.assign(h_.size() + 1, 0);
     for (const Link& l : links_)
         ++offsets_[l.receiver + 1];
     for (std::size_t n = 0; n < h_.size(); ++n)
         offsets_[n + 1] += offsets_[n];
-    std::vector<Link> sorted(links_.size());
-    std::vector<std::uint32_t> next(offsets_.begin(), offsets_.end() - 1);
-    for (const Link& l : links_)
-        sorted[next[l.receiver]++] = l;
-    links_ = std::move(sorted);
-    parallel_for_index(h_.size(), 256, [&](std::size_t q) {
-        std::stable_sort(links_.begin() + offsets_[q], links_.begin() + offsets_[q + 1],
-                         [](const Link& a, const Link& b) { return a.source < b.source; });
-    });
+    if (!links_.empty())
+        sort_links();
     if (tree_)
         index_cluster_links();
+}
+
+void LinkSet::sort_links() {
+    const int shift = std::max(0, int(std::bit_width(h_.size())) - 10);
+    const std::size_t tops = ((h_.size() - 1) >> shift) + 1;
+    std::vector<std::uint32_t> top_start(tops + 1);
+    for (std::size_t t = 0; t <= tops; ++t)
+        top_start[t] = offsets_[std::min(h_.size(), t << shift)];
+    flag_permute(links_, top_start, [shift](const Link& l) { return l.receiver >> shift; });
+    parallel_for_index(tops, 1, [&](std::size_t t) {
+        const std::size_t first = t << shift, last = std::min(h_.size(), (t + 1) << shift);
+        std::vector<std::uint32_t> start(offsets_.begin() + std::ptrdiff_t(first),
+                                         offsets_.begin() + std::ptrdiff_t(last) + 1);
+        const std::uint32_t base = start.front();
+        for (std::uint32_t& x : start)
+            x -= base;
+        flag_permute(std::span<Link>(links_).subspan(base, start.back()), start,
+                     [first](const Link& l) { return l.receiver - first; });
+    });
+    parallel_for_index(h_.size(), 256, [&](std::size_t q) {
+        std::sort(links_.begin() + offsets_[q], links_.begin() + offsets_[q + 1],
+                  [](const Link& a, const Link& b) {
+                      if (a.source != b.source)
+                          return a.source < b.source;
+                      const auto fa = std::bit_cast<std::uint32_t>(a.ff);
+                      const auto fb = std::bit_cast<std::uint32_t>(b.ff);
+                      if (fa != fb)
+                          return fa < fb;
+                      return std::bit_cast<std::uint32_t>(a.spread_word()) <
+                             std::bit_cast<std::uint32_t>(b.spread_word());
+                  });
+    });
 }
 
 } // namespace penumbra::solver

@@ -33,6 +33,8 @@ struct Link {
     float spread() const { return std::abs(spread_bits); }
     /// Partly occluded.
     bool partial() const { return std::signbit(spread_bits); }
+    /// The spread with the flag in its sign bit, as stored (a total order of links).
+    float spread_word() const { return spread_bits; }
 
 private:
     float spread_bits = 0; ///< the spread, negative (−0 for 0) for a partly occluded link
@@ -156,6 +158,8 @@ private:
     bool refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     bool refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     void sort_and_index();
+    /// Sorts the (non-empty) element links by the offsets sort_and_index counted.
+    void sort_links();
     void link_lights();
     /// Elements q and p may exchange light: distinct, not twins, p radiates, they face.
     bool linkable(std::uint32_t q, std::uint32_t p) const;

@@ -10,10 +10,7 @@
 
 namespace penumbra::solver {
 
-namespace {
-
-// Sutherland–Hodgman against the plane dot(p − x, n) ≥ 0. \p out holds up to count + 1 points.
-std::size_t clip_to_hemisphere(const Vec3& x, const Vec3& n, const Vec3* poly, std::size_t count,
+std::size_t clip_to_half_space(const Vec3& x, const Vec3& n, const Vec3* poly, std::size_t count,
                                Vec3* out) {
     std::size_t m = 0;
     for (std::size_t i = 0; i < count; ++i) {
@@ -30,15 +27,13 @@ std::size_t clip_to_hemisphere(const Vec3& x, const Vec3& n, const Vec3* poly, s
     return m;
 }
 
-} // namespace
-
 double form_factor_point_polygon(const Vec3& x, const Vec3& n, const Vec3* poly,
                                  std::size_t count) {
     constexpr std::size_t k_max = 16;
     Vec3 clipped[k_max + 1];
     if (count > k_max)
         count = k_max;
-    std::size_t m = clip_to_hemisphere(x, n, poly, count, clipped);
+    std::size_t m = clip_to_half_space(x, n, poly, count, clipped);
     if (m < 3)
         return 0.0;
     double sum = 0.0;

@@ -22,6 +22,11 @@ inline double form_factor_point_triangle(const Vec3& x, const Vec3& n,
     return form_factor_point_polygon(x, n, tri.data(), 3);
 }
 
+/// \brief Sutherland–Hodgman: the part of polygon \p poly where dot(p − x, n) ≥ 0, written to
+///        \p out (count + 1 points suffice for a convex polygon); returns its point count.
+std::size_t clip_to_half_space(const Vec3& x, const Vec3& n, const Vec3* poly, std::size_t count,
+                               Vec3* out);
+
 /// \brief Solid angle (sr) subtended by triangle \p tri seen from \p p.
 double solid_angle_triangle(const Vec3& p, const std::array<Vec3, 3>& tri);
 

@@ -320,17 +320,8 @@ bool LinkSet::shaft_end(NodeRef n, NodeRef other, std::uint32_t plane, double si
             for (const Vec3& v : h_.triangle[n])
                 clipped[count++] = v;
         } else {
-            const Vec3& m = h_.normal[other];
-            const double offset = dot(m, h_.triangle[other][0]);
-            for (std::size_t k = 0; k < 3; ++k) { // Sutherland–Hodgman against one plane
-                const Vec3& a = h_.triangle[n][k];
-                const Vec3& b = h_.triangle[n][(k + 1) % 3];
-                const double da = dot(m, a) - offset, db = dot(m, b) - offset;
-                if (da >= 0)
-                    clipped[count++] = a;
-                if ((da >= 0) != (db >= 0))
-                    clipped[count++] = a + (b - a) * (da / (da - db));
-            }
+            count = clip_to_half_space(h_.triangle[other][0], h_.normal[other],
+                                       h_.triangle[n].data(), 3, clipped.data());
         }
         if (count < 3)
             return false; // nothing of it faces the other end

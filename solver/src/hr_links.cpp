@@ -348,8 +348,7 @@ void flag_permute(std::span<Link> v, std::span<const std::uint32_t> start, Bucke
 // By receiver, then source, in place (no second copy of what is most of a big solve's
 // memory): an American flag sort on the receiver's high bits (at most 1024 buckets, whose
 // write positions stay in cache), then on the rest within each such bucket in parallel, then
-// each receiver's few links by their contents (a total order, so the result does not depend
-// on the order the swaps left them in).
+// each receiver's few links by source (a receiver links to a source once).
 void LinkSet::sort_and_index() {
     offsets_.assign(h_.size() + 1, 0);
     for (const Link& l : links_)
@@ -381,16 +380,7 @@ void LinkSet::sort_links() {
     });
     parallel_for_index(h_.size(), 256, [&](std::size_t q) {
         std::sort(links_.begin() + offsets_[q], links_.begin() + offsets_[q + 1],
-                  [](const Link& a, const Link& b) {
-                      if (a.source != b.source)
-                          return a.source < b.source;
-                      const auto fa = std::bit_cast<std::uint32_t>(a.ff);
-                      const auto fb = std::bit_cast<std::uint32_t>(b.ff);
-                      if (fa != fb)
-                          return fa < fb;
-                      return std::bit_cast<std::uint32_t>(a.spread_word()) <
-                             std::bit_cast<std::uint32_t>(b.spread_word());
-                  });
+                  [](const Link& a, const Link& b) { return a.source < b.source; });
     });
 }
 

@@ -33,8 +33,6 @@ struct Link {
     float spread() const { return std::abs(spread_bits); }
     /// Partly occluded.
     bool partial() const { return std::signbit(spread_bits); }
-    /// The spread with the flag in its sign bit, as stored (a total order of links).
-    float spread_word() const { return spread_bits; }
 
 private:
     float spread_bits = 0; ///< the spread, negative (−0 for 0) for a partly occluded link

@@ -45,14 +45,34 @@ namespace {
 struct Quadrature {
     std::array<Vec3, k_max_quadrature_points> point;
     std::size_t count = 0;
+    /// The points are the centroids of congruent sub-triangles, each the triangle's corner
+    /// one (t0, t0 + e1, t0 + e2) moved, or turned half round (the rule's "downward" ones).
+    Vec3 e1, e2;
+    std::array<std::int8_t, k_max_quadrature_points> turned{};
+    /// A uniform point of point k's sub-triangle from two uniform numbers.
+    Vec3 jittered(std::size_t k, double u1, double u2) const {
+        if (u1 + u2 > 1) { // the unit square's upper half folded onto the lower
+            u1 = 1 - u1;
+            u2 = 1 - u2;
+        }
+        const double sign = turned[k] ? -1.0 : 1.0;
+        return point[k] + (e1 * (u1 - 1.0 / 3.0) + e2 * (u2 - 1.0 / 3.0)) * sign;
+    }
 };
 
 Quadrature make_quadrature(const std::array<Vec3, 3>& t, int level) {
     std::array<std::array<double, 2>, k_max_quadrature_points> bary{};
     Quadrature q;
     quadrature_barycentrics(level, bary.data(), &q.count);
-    for (std::size_t k = 0; k < q.count; ++k)
-        q.point[k] = t[0] + (t[1] - t[0]) * bary[k][0] + (t[2] - t[0]) * bary[k][1];
+    const double k = double(1 << level);
+    q.e1 = (t[1] - t[0]) / k;
+    q.e2 = (t[2] - t[0]) / k;
+    for (std::size_t i = 0; i < q.count; ++i) {
+        q.point[i] = t[0] + (t[1] - t[0]) * bary[i][0] + (t[2] - t[0]) * bary[i][1];
+        // An upward centroid sits at a third of its cell, a turned one at two thirds.
+        const double cell = bary[i][0] * k - std::floor(bary[i][0] * k + 1e-9);
+        q.turned[i] = cell > 0.5 ? 1 : 0;
+    }
     return q;
 }
 
@@ -83,17 +103,57 @@ double point_form_factors(const Quadrature& quad, const OrientedTriangle& a,
 /// rules, whose pairs are near and large relative to their distance, get more.
 constexpr int k_min_probe_rays = 4;
 constexpr int k_max_probe_rays = 16;
+/// Pairs whose far end subtends more than this (sr) from the near end's centroid draw their
+/// rays' directions in its solid angle; others draw points of it by area (whose kernel then
+/// varies little over it).
+constexpr double k_solid_angle_sampling = 0.05;
 
 struct PairVisibility {
     double fraction = 0;  ///< of the rays, weighed as the transfer
     bool partial = false; ///< the rays disagreed
 };
 
+/// A direction drawn uniformly in the spherical triangle of unit vectors a, b, c, and its
+/// solid angle (Arvo 1995, "Stratified sampling of spherical triangles").
+struct SphericalSample {
+    Vec3 direction;
+    double solid_angle = 0;
+};
+
+SphericalSample sample_spherical_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double u1,
+                                          double u2) {
+    const Vec3 n_ab = normalize(cross(a, b)), n_bc = normalize(cross(b, c)),
+               n_ca = normalize(cross(c, a));
+    const double alpha = std::acos(std::clamp(-dot(n_ab, n_ca), -1.0, 1.0));
+    const double beta = std::acos(std::clamp(-dot(n_bc, n_ab), -1.0, 1.0));
+    const double gamma = std::acos(std::clamp(-dot(n_ca, n_bc), -1.0, 1.0));
+    SphericalSample out;
+    out.solid_angle = alpha + beta + gamma - k_pi;
+    // The sub-triangle a, b, ĉ of area u1 × the whole: ĉ on the arc from a to c.
+    const double area = u1 * out.solid_angle;
+    const double s = std::sin(area - alpha), t = std::cos(area - alpha);
+    const double u = t - std::cos(alpha), v = s + std::sin(alpha) * dot(a, b);
+    const double denominator = (v * s + u * t) * std::sin(alpha);
+    const double q = denominator != 0
+                         ? std::clamp(((v * t - u * s) * std::cos(alpha) - v) / denominator, -1.0, 1.0)
+                         : 1.0;
+    const Vec3 c_hat = a * q + normalize(c - a * dot(c, a)) * std::sqrt(1 - q * q);
+    // Then a point on the arc from b to ĉ.
+    const double z = std::clamp(1 - u2 * (1 - dot(c_hat, b)), -1.0, 1.0);
+    const Vec3 w = c_hat - b * dot(c_hat, b);
+    const double w_len = length(w);
+    out.direction = w_len > 0 ? b * z + w * (std::sqrt(1 - z * z) / w_len) : b;
+    return out;
+}
+
 // The visible fraction of the transfer from a's quadrature points (whose shares of it are
-// \p f) to b: rays leave the points in proportion to their shares (stratified, jittered)
-// and end at area-drawn points of b. As many probes as points (4 to 16) first; \p rays more
-// unless all were open. Importance sampling: a near pair's fine rule does not cost a ray
-// per point.
+// \p f) to b, ∫∫ K V / ∫∫ K with K = cos cos / r²: rays leave uniform points of the points'
+// sub-triangles, drawn in proportion to the points' shares (stratified), toward b, and each
+// counts K over the density it was drawn with (self-normalised). Toward a b that subtends
+// much, directions are drawn uniformly in its solid angle from the ray's origin (the weight
+// is then the cosine there: steady where K peaks, by a common edge); toward others, points
+// by area (weight K). As many probes as points (4 to 16) first; \p rays more unless all were
+// open.
 PairVisibility pair_visibility(const Quadrature& quad, const PointValues& f,
                                const OrientedTriangle& a, const OrientedTriangle& b,
                                double offset, int rays, const VisibilityQuery& visibility,
@@ -111,25 +171,63 @@ PairVisibility pair_visibility(const Quadrature& quad, const PointValues& f,
     const double cross_weight = offset * (1.0 - std::abs(dot(a.n, b.n)));
     const Vec3 lift_a = a.n * offset + b.n * cross_weight;
     const Vec3 lift_b = b.n * offset + a.n * cross_weight;
+    const Vec3 centroid_a = (a.v[0] + a.v[1] + a.v[2]) / 3.0;
+    auto directions = [&](const Vec3& x, std::array<Vec3, 3>& d) {
+        for (std::size_t k = 0; k < 3; ++k)
+            d[k] = normalize(b.v[k] - x);
+    };
+    std::array<Vec3, 3> dc;
+    directions(centroid_a, dc);
+    const bool by_angle = solid_angle_triangle(centroid_a, b.v) > k_solid_angle_sampling;
     std::vector<Segment> segments;
     std::vector<std::uint8_t> blocked;
+    std::vector<double> weight;
     int open = 0, cast_rays = 0;
+    double w_open = 0, w_all = 0;
     auto cast = [&](int n) {
         segments.clear();
+        weight.clear();
         for (int j = 0; j < n; ++j) {
             const double u = (double(j) + rng.next_double()) / double(n) * total;
             const auto it = std::upper_bound(running.begin() + 1,
                                              running.begin() + std::ptrdiff_t(quad.count) + 1, u);
             const auto i = std::size_t(std::clamp<std::ptrdiff_t>(
                 it - running.begin() - 1, 0, std::ptrdiff_t(quad.count) - 1));
-            const Vec3 from = quad.point[i] + lift_a;
-            const Vec3 to = sample_triangle(b.v, rng.next_double(), rng.next_double()) + lift_b;
+            const Vec3 x = quad.jittered(i, rng.next_double(), rng.next_double());
+            const double u1 = rng.next_double(), u2 = rng.next_double();
+            Vec3 y;
+            double w = 0;
+            if (by_angle) {
+                std::array<Vec3, 3> d;
+                directions(x, d);
+                const SphericalSample sample = sample_spherical_triangle(d[0], d[1], d[2], u1, u2);
+                const double along = dot(sample.direction, b.n);
+                const double cos_x = dot(sample.direction, a.n);
+                if (along < 0 && cos_x > 0) {
+                    y = x + sample.direction * (dot(b.v[0] - x, b.n) / along);
+                    w = cos_x * sample.solid_angle / f[i];
+                } else {
+                    y = sample_triangle(b.v, u1, u2); // a ray of no weight
+                }
+            } else {
+                y = sample_triangle(b.v, u1, u2);
+                const Vec3 d = y - x;
+                const double r2 = dot(d, d);
+                if (r2 > 0)
+                    w = std::max(0.0, dot(a.n, d)) * std::max(0.0, -dot(b.n, d)) /
+                        (r2 * r2 * f[i]);
+            }
+            const Vec3 from = x + lift_a, to = y + lift_b;
             segments.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
+            weight.push_back(std::isfinite(w) ? w : 0.0);
         }
         blocked.assign(segments.size(), 0);
         visibility.occluded(segments, blocked);
-        for (std::uint8_t x : blocked)
-            open += x ? 0 : 1;
+        for (std::size_t j = 0; j < blocked.size(); ++j) {
+            open += blocked[j] ? 0 : 1;
+            w_all += weight[j];
+            w_open += blocked[j] ? 0.0 : weight[j];
+        }
         cast_rays += n;
     };
     // A few blocked probes do not prove a pair dark (a pair seen through a door would be
@@ -139,7 +237,7 @@ PairVisibility pair_visibility(const Quadrature& quad, const PointValues& f,
     if (open < probes)
         cast(std::max(rays, 1));
     out.partial = open > 0 && open < cast_rays;
-    out.fraction = double(open) / double(cast_rays);
+    out.fraction = w_all > 0 ? w_open / w_all : double(open) / double(cast_rays);
     return out;
 }
 

@@ -551,13 +551,10 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         }
     cluster_links_.swap(next);
     cluster_kept_.swap(next_kept);
-    std::vector<Link> element_links(element_pairs.size());
-    parallel_for_index(element_pairs.size(), 16, [&](std::size_t i) {
-        element_links[i] = make_link(element_pairs[i].first, element_pairs[i].second);
-    });
-    for (const Link& l : element_links)
-        if (l.ff > 0)
-            links_.push_back(l);
+    // Element pairs are made once the cluster passes are done (make_pair_links): most are
+    // linked both ways, and a pair's two links share one computation.
+    for (const auto& [q, p] : element_pairs)
+        links_.emplace_back(q, p, 0.0f, 0.0f, false);
     return true;
 }
 

@@ -148,8 +148,18 @@ public:
     const std::vector<std::uint32_t>& receiver_offsets() const { return offsets_; }
 
 private:
-    /// \p visible: the pair is a part of a fully visible one (no rays).
-    Link make_link(std::uint32_t receiver, std::uint32_t source, bool visible = false) const;
+    Link make_link(std::uint32_t receiver, std::uint32_t source) const;
+    /// The link of \p l's pair the other way (F_pq A_p = F_qp A_q, the same visibility).
+    /// Its spread is computed only where the oracle reads it (an end above min_area).
+    Link reverse_link(const Link& l) const;
+    /// Makes the links links_[first, end) name (placeholders), one computation per pair
+    /// linked both ways, and drops those that carry nothing. Reorders them. \p indexed:
+    /// links_[0, first) are as receiver_offsets() indexed them, and a pair's link the other
+    /// way found there is used too.
+    void make_pair_links(std::size_t first, bool indexed);
+    /// The link from \p source to \p receiver among links_[0, sorted) as receiver_offsets()
+    /// indexed them, or null.
+    const Link* find_link(std::uint32_t receiver, std::uint32_t source, std::size_t sorted) const;
     LightLink make_light_link(std::uint32_t receiver, std::uint32_t light) const;
     LightLink make_sun_link(std::uint32_t receiver) const;
     void subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<float>& b_range);

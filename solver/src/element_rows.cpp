@@ -179,9 +179,11 @@ PairVisibility pair_visibility(const Quadrature& quad, const PointValues& f,
     std::array<Vec3, 3> dc;
     directions(centroid_a, dc);
     const bool by_angle = solid_angle_triangle(centroid_a, b.v) > k_solid_angle_sampling;
-    std::vector<Segment> segments;
-    std::vector<std::uint8_t> blocked;
-    std::vector<double> weight;
+    // Called for every element pair: no allocation per call (visibility queries start no
+    // parallel work that could run another pair on this thread).
+    thread_local std::vector<Segment> segments;
+    thread_local std::vector<std::uint8_t> blocked;
+    thread_local std::vector<double> weight;
     int open = 0, cast_rays = 0;
     double w_open = 0, w_all = 0;
     auto cast = [&](int n) {

@@ -232,10 +232,18 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
                                   settings_.rows.seed);
     const double rc = length(cp - cq);
     const Vec3 dc = rc > 0 ? (cp - cq) / rc : Vec3(0, 0, 1);
-    std::vector<Segment> segments;
     // Per ray: the point kernel 1/(π d²), the true one (cos_q cos_p / (π d²)) and the cosines'
-    // product the lobe model gives the two ends along the centres' direction.
-    std::vector<double> kernel, true_kernel, model_cosines;
+    // product the lobe model gives the two ends along the centres' direction. Called for
+    // every new cluster link: no allocation per call (nothing below starts parallel work).
+    thread_local std::vector<Segment> segments;
+    thread_local std::vector<double> kernel, true_kernel, model_cosines;
+    thread_local std::vector<std::uint8_t> blocked;
+    thread_local std::vector<std::int32_t> hits;
+    segments.clear();
+    kernel.clear();
+    true_kernel.clear();
+    model_cosines.clear();
+    hits.clear();
     for (int k = 0; k < count; ++k) {
         Vec3 nq, np;
         const Vec3 xq = sample_facing_point(q, cp, rng, nq, dfs_area_);
@@ -255,8 +263,7 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     if (segments.empty())
         return link.rays > 0;
     // A link's first rays name what they hit: the planes that may block it all.
-    std::vector<std::uint8_t> blocked(segments.size());
-    std::vector<std::int32_t> hits;
+    blocked.assign(segments.size(), 0);
     if (link.rays == 0) {
         hits.resize(segments.size());
         visibility_.first_hit(segments, hits);

@@ -178,7 +178,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
                  h.root_count);
     }
     if (reuse) {
-        links.restore(reuse->links, reuse->cluster_links);
+        links.restore(reuse->links.span(), reuse->cluster_links.span());
         ctx.info("hierarchical: reusing {} nodes and {} links", h.size(), links.link_count());
     } else if (!clusters.enabled) {
         links.link_roots();

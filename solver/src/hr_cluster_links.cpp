@@ -513,21 +513,22 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         if ((decision[k] == split_receiver || decision[k] == split_source) && !is_cluster(n))
             subdivide(n, b, b_range);
     }
-    std::vector<ClusterLink> next;
-    std::vector<std::uint8_t> next_kept;
-    std::vector<std::pair<NodeRef, NodeRef>> cluster_pairs, element_pairs;
+    // In place: the kept links move to the front, the parts of the split ones follow them.
+    // Element pairs are made once the cluster passes are done (make_pair_links): most are
+    // linked both ways, and a pair's two links share one computation.
+    std::vector<std::pair<NodeRef, NodeRef>> cluster_pairs;
     auto add_pair = [&](NodeRef q, NodeRef p) {
         if (is_cluster(q) || is_cluster(p))
             cluster_pairs.emplace_back(q, p);
         else if (linkable(q, p))
-            element_pairs.emplace_back(q, p);
+            links_.emplace_back(q, p, 0.0f, 0.0f, false);
     };
+    std::size_t kept = 0;
     for (std::size_t k = 0; k < cluster_links_.size(); ++k) {
-        const ClusterLink& l = cluster_links_[k];
+        const ClusterLink l = cluster_links_[k];
         switch (decision[k]) {
         case keep:
-            next.push_back(l);
-            next_kept.push_back(1);
+            cluster_links_[kept++] = l;
             break;
         case split_self:
             for_each_child(l.receiver, [&](NodeRef i) {
@@ -547,21 +548,20 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
             break;
         }
     }
-    std::vector<ClusterLink> made(cluster_pairs.size());
+    cluster_links_.resize(kept + cluster_pairs.size());
     parallel_for_index(cluster_pairs.size(), 16, [&](std::size_t i) {
-        made[i] = make_cluster_link(cluster_pairs[i].first, cluster_pairs[i].second);
+        cluster_links_[kept + i] =
+            make_cluster_link(cluster_pairs[i].first, cluster_pairs[i].second);
     });
-    for (const ClusterLink& l : made)
-        if (l.self || l.g > 0) {
-            next.push_back(l);
-            next_kept.push_back(0);
-        }
-    cluster_links_.swap(next);
-    cluster_kept_.swap(next_kept);
-    // Element pairs are made once the cluster passes are done (make_pair_links): most are
-    // linked both ways, and a pair's two links share one computation.
-    for (const auto& [q, p] : element_pairs)
-        links_.emplace_back(q, p, 0.0f, 0.0f, false);
+    cluster_pairs = {};
+    // Drop the new links that carry nothing (the kept ones all carry something).
+    const auto carried =
+        std::remove_if(cluster_links_.begin() + std::ptrdiff_t(kept), cluster_links_.end(),
+                       [](const ClusterLink& l) { return !l.self && !(l.g > 0); });
+    cluster_links_.resize(std::size_t(carried - cluster_links_.begin()));
+    cluster_kept_.assign(cluster_links_.size(), 0);
+    std::fill(cluster_kept_.begin(), cluster_kept_.begin() + std::ptrdiff_t(kept),
+              std::uint8_t(1));
     return true;
 }
 
@@ -651,17 +651,18 @@ void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& e
                             const std::vector<Lobes>& emitted, const std::vector<float>& peak) {
     attach_clusters(tree, exitance, emitted, peak);
     links_.clear();
-    cluster_links_ = {make_cluster_link(cluster_ref(0), cluster_ref(0))};
+    cluster_links_.clear();
+    cluster_links_.push_back(make_cluster_link(cluster_ref(0), cluster_ref(0)));
     link_lights();
     sort_and_index();
 }
 
 void LinkSet::index_cluster_links() {
-    std::stable_sort(cluster_links_.begin(), cluster_links_.end(),
-                     [](const ClusterLink& a, const ClusterLink& b) {
-                         return a.receiver != b.receiver ? a.receiver < b.receiver
-                                                         : a.source < b.source;
-                     });
+    // In place (a stable sort would copy them): a receiver links to a source once.
+    std::sort(cluster_links_.begin(), cluster_links_.end(),
+              [](const ClusterLink& a, const ClusterLink& b) {
+                  return a.receiver != b.receiver ? a.receiver < b.receiver : a.source < b.source;
+              });
     cl_elements_.assign(h_.size() + 1, 0);
     cl_clusters_.assign(tree_->size() + 1, 0);
     for (const ClusterLink& l : cluster_links_) {

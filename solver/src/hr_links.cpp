@@ -85,7 +85,7 @@ const Link* LinkSet::find_link(std::uint32_t receiver, std::uint32_t source,
 // smaller end is computed (the finer rule the distance asks of the larger end costs more and
 // is less accurate beside a small source) and the other follows by reciprocity.
 void LinkSet::make_pair_links(std::size_t first, bool indexed) {
-    const std::span<Link> pending = std::span<Link>(links_).subspan(first);
+    const std::span<Link> pending = links_.span().subspan(first);
     auto key = [](const Link& l) {
         return std::tuple(std::min(l.receiver, l.source), std::max(l.receiver, l.source),
                           l.receiver);
@@ -111,9 +111,9 @@ void LinkSet::make_pair_links(std::size_t first, bool indexed) {
         pending[k + 1] = q_first ? other : made;
     });
     // Drop the links that carry nothing, in place.
-    links_.erase(std::remove_if(links_.begin() + std::ptrdiff_t(first), links_.end(),
-                                [](const Link& l) { return !(l.ff > 0); }),
-                 links_.end());
+    links_.resize(std::size_t(std::remove_if(links_.begin() + std::ptrdiff_t(first), links_.end(),
+                                             [](const Link& l) { return !(l.ff > 0); }) -
+                              links_.begin()));
 }
 
 LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
@@ -185,15 +185,16 @@ void LinkSet::link_roots() {
     });
     links_.clear();
     for (auto& v : per_receiver)
-        links_.insert(links_.end(), v.begin(), v.end());
+        for (const Link& l : v)
+            links_.push_back(l);
     make_pair_links(0, false);
     link_lights();
     sort_and_index();
 }
 
-void LinkSet::restore(std::vector<Link> links, std::vector<ClusterLink> cluster_links) {
-    links_ = std::move(links);
-    cluster_links_ = std::move(cluster_links);
+void LinkSet::restore(std::span<const Link> links, std::span<const ClusterLink> cluster_links) {
+    links_.assign(links);
+    cluster_links_.assign(cluster_links);
     link_lights();
     sort_and_index();
 }
@@ -267,36 +268,36 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         if (decision[k] != keep)
             subdivide(decision[k] == split_receiver ? links_[k].receiver : links_[k].source, b,
                       b_range);
-    // Sized exactly: the biggest refinements of a large scene make tens of millions of links.
-    const std::size_t split =
-        std::size_t(std::count_if(decision.begin(), decision.end(),
-                                  [](std::uint8_t d) { return d != keep; }));
-    std::vector<Link> next;
-    next.reserve(links_.size() + 3 * split);
-    for (std::size_t k = 0; k < links_.size(); ++k)
-        if (decision[k] == keep)
-            next.push_back(links_[k]);
-    const std::size_t kept = next.size();
-    // The parts of the split links, made after: a pair split both ways (each link splits its
-    // larger end) makes its parts' links both ways. Each casts its own rays: the parts of a
-    // pair whose few probes were all open are not all visible (a floor triangle's part under
-    // a desk), and taking them as such made the closed 3x3 office floor gain 1.5 % of its
-    // power.
+    // In place (the biggest refinements of a large scene make tens of millions of links):
+    // the kept links move to the front, and the parts of the split links, made after, follow
+    // them. A pair split both ways (each link splits its larger end) makes its parts' links
+    // both ways. Each casts its own rays: the parts of a pair whose few probes were all open
+    // are not all visible (a floor triangle's part under a desk), and taking them as such
+    // made the closed 3x3 office floor gain 1.5 % of its power.
+    struct Split {
+        std::uint32_t receiver, source;
+        std::uint8_t decision;
+    };
+    std::vector<Split> splits;
+    std::size_t kept = 0;
     for (std::size_t k = 0; k < links_.size(); ++k) {
-        const Link& l = links_[k];
         if (decision[k] == keep)
-            continue;
-        for (int c = 0; c < 4; ++c) {
-            if (decision[k] == split_receiver)
-                next.emplace_back(std::uint32_t(h_.first_child[l.receiver] + c), l.source, 0.0f,
-                                  0.0f, false);
-            else
-                next.emplace_back(l.receiver, std::uint32_t(h_.first_child[l.source] + c), 0.0f,
-                                  0.0f, false);
-        }
+            links_[kept++] = links_[k];
+        else
+            splits.push_back({links_[k].receiver, links_[k].source, decision[k]});
     }
-    links_.swap(next);
-    next = {};
+    links_.resize(kept);
+    links_.reserve(kept + 4 * splits.size());
+    for (const Split& l : splits)
+        for (int c = 0; c < 4; ++c) {
+            if (l.decision == split_receiver)
+                links_.emplace_back(std::uint32_t(h_.first_child[l.receiver] + c), l.source,
+                                    0.0f, 0.0f, false);
+            else
+                links_.emplace_back(l.receiver, std::uint32_t(h_.first_child[l.source] + c),
+                                    0.0f, 0.0f, false);
+        }
+    splits = {};
     make_pair_links(kept, false);
     kept_.assign(links_.size(), 0);
     std::fill(kept_.begin(), kept_.begin() + std::ptrdiff_t(kept), std::uint8_t(1));
@@ -414,7 +415,7 @@ void LinkSet::sort_links() {
     std::vector<std::uint32_t> top_start(tops + 1);
     for (std::size_t t = 0; t <= tops; ++t)
         top_start[t] = offsets_[std::min(h_.size(), t << shift)];
-    flag_permute(links_, top_start, [shift](const Link& l) { return l.receiver >> shift; });
+    flag_permute(links_.span(), top_start, [shift](const Link& l) { return l.receiver >> shift; });
     parallel_for_index(tops, 1, [&](std::size_t t) {
         const std::size_t first = t << shift, last = std::min(h_.size(), (t + 1) << shift);
         std::vector<std::uint32_t> start(offsets_.begin() + std::ptrdiff_t(first),
@@ -422,7 +423,7 @@ void LinkSet::sort_links() {
         const std::uint32_t base = start.front();
         for (std::uint32_t& x : start)
             x -= base;
-        flag_permute(std::span<Link>(links_).subspan(base, start.back()), start,
+        flag_permute(links_.span().subspan(base, start.back()), start,
                      [first](const Link& l) { return l.receiver - first; });
     });
     parallel_for_index(h_.size(), 256, [&](std::size_t q) {

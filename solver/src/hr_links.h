@@ -16,6 +16,7 @@
 #include "cluster_tree.h"
 #include "element_rows.h"
 #include "hierarchy.h"
+#include "mapped_array.h"
 #include "occluders.h"
 
 namespace penumbra::solver {
@@ -114,7 +115,7 @@ public:
                          const std::vector<Lobes>& emitted, const std::vector<float>& peak);
     /// Takes saved links (a re-solve) and links the lights anew (their intensities may have
     /// changed).
-    void restore(std::vector<Link> links, std::vector<ClusterLink> cluster_links);
+    void restore(std::span<const Link> links, std::span<const ClusterLink> cluster_links);
     /// Sets the refinement threshold (W/m²).
     void set_threshold(double threshold) { settings_.threshold = threshold; }
     /// Sets the cluster links' refinement threshold (W/m²).
@@ -128,15 +129,15 @@ public:
     bool refine(std::vector<Rgb>& b, std::vector<float>& b_range,
                 const std::function<void(const RefinePass&)>& on_pass = {});
 
-    const std::vector<Link>& links() const { return links_; }
+    std::span<const Link> links() const { return links_.span(); }
     /// Moves the element links (or the cluster links) out, leaving the link set without them.
-    std::vector<Link> take_links() { return std::exchange(links_, {}); }
-    std::vector<ClusterLink> take_cluster_links() { return std::exchange(cluster_links_, {}); }
+    MappedArray<Link> take_links() { return std::exchange(links_, {}); }
+    MappedArray<ClusterLink> take_cluster_links() { return std::exchange(cluster_links_, {}); }
     const std::vector<LightLink>& light_links() const { return light_links_; }
     /// What the sun's links deliver, Σ irradiance × receiver area (W per channel): the
     /// sun's power in the balance.
     RgbD sun_power() const;
-    const std::vector<ClusterLink>& cluster_links() const { return cluster_links_; }
+    std::span<const ClusterLink> cluster_links() const { return cluster_links_.span(); }
     /// CSR offsets of cluster_links() with an element receiver, by element node, and with a
     /// cluster receiver, by cluster (cluster links are kept sorted by receiver).
     const std::vector<std::uint32_t>& cluster_offsets_elements() const { return cl_elements_; }
@@ -227,7 +228,7 @@ private:
     const std::vector<PointLight>& lights_;
     const Sun* sun_ = nullptr; ///< light index lights_.size() in light links
     RefineSettings settings_;
-    std::vector<Link> links_;
+    MappedArray<Link> links_;
     std::vector<LightLink> light_links_;
     std::vector<std::uint32_t> offsets_;
     const ClusterTree* tree_ = nullptr;
@@ -252,7 +253,7 @@ private:
     /// in that lobe (lo xyz, hi xyz, rounded outward; empty where lo > hi): which part of a
     /// cluster faces a plane's side.
     std::vector<std::array<std::array<float, 6>, 6>> lobe_bounds_;
-    std::vector<ClusterLink> cluster_links_;
+    MappedArray<ClusterLink> cluster_links_;
     std::vector<std::uint32_t> cl_elements_, cl_clusters_;
     /// Within one refine(), per link: its oracle already said keep. Radiosities do not change
     /// during refine() and new nodes take their parent's values, so it would say keep again:

@@ -187,7 +187,7 @@ private:
             }
         }
         set_power(r, 0.0);
-        const std::vector<Link>& all = links_.links();
+        const std::span<const Link> all = links_.links();
         for (std::uint32_t i = begin; i < end; ++i) {
             const std::uint32_t n = trees_.nodes[i];
             const Rgb u = unshot_[n];

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <span>
 #include <fstream>
 #include <sstream>
 
@@ -29,10 +30,14 @@ public:
         out_.write(reinterpret_cast<const char*>(&value), sizeof(T));
     }
     template <typename T>
-    void vec(const std::vector<T>& values) {
+    void vec(std::span<const T> values) {
         pod(std::uint64_t(values.size()));
         out_.write(reinterpret_cast<const char*>(values.data()),
                    std::streamsize(values.size() * sizeof(T)));
+    }
+    template <typename T>
+    void vec(const std::vector<T>& values) {
+        vec(std::span<const T>(values));
     }
 
 private:
@@ -50,12 +55,14 @@ public:
     }
     template <typename T>
     std::vector<T> vec() {
-        const auto n = pod<std::uint64_t>();
-        if (n > (bytes_.size() - at_) / sizeof(T))
-            fail("truncated or corrupt");
-        std::vector<T> values(n);
-        take(values.data(), n * sizeof(T));
+        std::vector<T> values(count<T>());
+        take(values.data(), values.size() * sizeof(T));
         return values;
+    }
+    template <typename T>
+    void vec(MappedArray<T>& values) {
+        values.resize(count<T>());
+        take(values.data(), values.size() * sizeof(T));
     }
     void take(void* out, std::size_t n) {
         if (n > bytes_.size() - at_)
@@ -64,6 +71,14 @@ public:
         at_ += n;
     }
     bool done() const { return at_ == bytes_.size(); }
+    /// The element count of the array that follows, checked against what is left.
+    template <typename T>
+    std::size_t count() {
+        const auto n = pod<std::uint64_t>();
+        if (n > (bytes_.size() - at_) / sizeof(T))
+            fail("truncated or corrupt");
+        return std::size_t(n);
+    }
     [[noreturn]] void fail(const std::string& what) const {
         throw InputError(path_, "", "not a Penumbra solver state (" + what +
                                         "): bake again with the hierarchical method");
@@ -110,8 +125,8 @@ void write_hierarchical_state(const HierarchicalState& s, const std::string& pat
         w.vec(h.first_child);
         w.vec(h.level);
         w.vec(s.twin);
-        w.vec(s.links);
-        w.vec(s.cluster_links);
+        w.vec(s.links.span());
+        w.vec(s.cluster_links.span());
         w.vec(s.radiosity);
         w.vec(s.weights.offset);
         w.vec(s.weights.receive);
@@ -154,8 +169,8 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
     h.first_child = r.vec<std::int32_t>();
     h.level = r.vec<std::int32_t>();
     s->twin = r.vec<std::int32_t>();
-    s->links = r.vec<Link>();
-    s->cluster_links = r.vec<ClusterLink>();
+    r.vec(s->links);
+    r.vec(s->cluster_links);
     s->radiosity = r.vec<Rgb>();
     LeafWeights& lw = s->weights;
     lw.offset = r.vec<std::uint32_t>();

@@ -22,8 +22,8 @@ struct HierarchicalState {
     bool clustered = false;
     Hierarchy hierarchy;
     std::vector<std::int32_t> twin;
-    std::vector<Link> links;
-    std::vector<ClusterLink> cluster_links;
+    MappedArray<Link> links;
+    MappedArray<ClusterLink> cluster_links;
     std::vector<Rgb> radiosity; ///< per node
     LeafWeights weights;        ///< of the saved links (geometry only: reused as they are)
 };

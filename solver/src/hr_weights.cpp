@@ -23,7 +23,7 @@ std::uint64_t link_word(std::uint32_t far_end, float ff, bool partial) {
 // A hash of each node's links as receiver and as source (far end, form factor, occlusion).
 std::vector<std::uint64_t> link_signatures(const Hierarchy& h, const LinkSet& links,
                                            const LinksBySource& by_source) {
-    const std::vector<Link>& all = links.links();
+    const std::span<const Link> all = links.links();
     const std::vector<std::uint32_t>& by_receiver = links.receiver_offsets();
     std::vector<std::uint64_t> sig(h.size(), 0);
     parallel_for_index(h.size(), 256, [&](std::size_t a) {
@@ -82,7 +82,7 @@ struct RawWeight {
 // occluded link keeps its even spread: its visibility from x is not known without rays.
 RawWeight raw_weight(const Hierarchy& h, const LinkSet& links, const LinksBySource& by_source,
                      const Ends& ends, std::uint32_t x, std::uint32_t a) {
-    const std::vector<Link>& all = links.links();
+    const std::span<const Link> all = links.links();
     const std::vector<std::uint32_t>& by_receiver = links.receiver_offsets();
     RawWeight w;
     double seen = 0, linked = 0;
@@ -145,22 +145,28 @@ void scale_to_unit_means(const Hierarchy& h, LeafWeights& w) {
 
 } // namespace
 
-LinksBySource index_by_source(const Hierarchy& h, const std::vector<Link>& links) {
+LinksBySource index_by_source(const Hierarchy& h, std::span<const Link> links,
+                              bool inner_sources_only) {
     LinksBySource s;
     s.start.assign(h.size() + 1, 0);
+    auto indexed = [&](const Link& l) { return !inner_sources_only || !h.is_leaf(l.source); };
     for (const Link& l : links)
-        ++s.start[l.source + 1];
+        if (indexed(l))
+            ++s.start[l.source + 1];
     for (std::size_t n = 0; n < h.size(); ++n)
         s.start[n + 1] += s.start[n];
     std::vector<std::uint32_t> next(s.start.begin(), s.start.end() - 1);
-    s.order.resize(links.size());
+    s.order.resize(s.start.back());
     for (std::size_t k = 0; k < links.size(); ++k)
-        s.order[next[links[k].source]++] = std::uint32_t(k);
+        if (indexed(links[k]))
+            s.order[next[links[k].source]++] = std::uint32_t(k);
     return s;
 }
 
 LeafWeights leaf_weights(const Hierarchy& h, const LinkSet& links, const LeafWeights& previous) {
-    const LinksBySource by_source = index_by_source(h, links.links());
+    // Weights are per leaf and ancestor: only inner nodes' links are read (a big scene's
+    // leaves send most links, and an index of all of them is 4 bytes a link).
+    const LinksBySource by_source = index_by_source(h, links.links(), true);
     LeafWeights w;
     w.signature = link_signatures(h, links, by_source);
     w.offset.assign(h.size() + 1, 0);

@@ -23,6 +23,7 @@
 // furnace), and with uniform importance every leaf sends what links of its own would take.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "hierarchy.h"
@@ -35,7 +36,8 @@ struct LeafWeights {
     /// ancestor's level (inner nodes have none).
     std::vector<std::uint32_t> offset;
     std::vector<float> receive, emit;
-    /// The same before the scaling to unit means, and a hash of each node's links: what the
+    /// The same before the scaling to unit means, and a hash of each node's links (its sent
+    /// ones only where it is an inner node, the only nodes read): what the
     /// next refinement cycle reuses where neither the leaf nor the ancestor's links changed.
     std::vector<float> raw_receive, raw_emit;
     std::vector<std::uint64_t> signature;
@@ -51,7 +53,9 @@ struct LeafWeights {
 struct LinksBySource {
     std::vector<std::uint32_t> start, order;
 };
-LinksBySource index_by_source(const Hierarchy& h, const std::vector<Link>& links);
+/// \p inner_sources_only: leaves' links are left out (their groups are empty).
+LinksBySource index_by_source(const Hierarchy& h, std::span<const Link> links,
+                              bool inner_sources_only = false);
 
 /// \brief The weights of every leaf for each of its ancestors: the far ends of the ancestor's
 ///        element links seen from the leaf's centroid (analytic point form factors, no rays).

@@ -252,8 +252,18 @@ bool is_near(const OrientedTriangle& a, const OrientedTriangle& b) {
 
 int quadrature_level_for(const OrientedTriangle& a, const OrientedTriangle& b,
                          const RowSettings& settings) {
-    if (is_near(a, b))
-        return settings.near_quadrature_level;
+    if (is_near(a, b)) {
+        if (settings.apart_quadrature_level >= settings.near_quadrature_level)
+            return settings.near_quadrature_level;
+        // Only a pair that touches (a shared vertex or one on the other's edge) has the
+        // steep part by a common edge that the fine rule is for.
+        const double tol = 1e-6 * (longest_edge(a.v) + longest_edge(b.v));
+        for (const Vec3& p : a.v)
+            for (const Vec3& q : b.v)
+                if (length(p - q) <= tol)
+                    return settings.near_quadrature_level;
+        return settings.apart_quadrature_level;
+    }
     // F(x → b) is convex over a, so a coarse centroid rule underestimates its integral
     // (Jensen): resolve a finely enough relative to the distance, whatever b's size.
     const Vec3 ca = (a.v[0] + a.v[1] + a.v[2]) / 3.0, cb = (b.v[0] + b.v[1] + b.v[2]) / 3.0;

@@ -36,6 +36,7 @@ struct ElementGeometry {
 struct RowSettings {
     int quadrature_level = 1;      ///< 4^level points on the shooter for distant receivers
     int near_quadrature_level = 3; ///< for receivers within about one element size
+    int apart_quadrature_level = 3; ///< the same for such receivers that share no vertex
     int visibility_rays = 16; ///< per receiver, spread over the quadrature points
     int escape_rays = 64;     ///< cosine rays per shooter that estimate the escaping fraction
     int escape_rays_emitter = 4096; ///< the same for emitters, which carry the direct power

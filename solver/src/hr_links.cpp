@@ -95,11 +95,17 @@ void LinkSet::make_pair_links(std::size_t first, bool indexed) {
     auto reverse_of = [](const Link& x, const Link& y) {
         return x.receiver == y.source && x.source == y.receiver;
     };
+    // Which links are made with the one before them, found before any is written (a pair's
+    // first link writes its second).
+    std::vector<std::uint8_t> second(pending.size(), 0);
+    parallel_for_index(pending.size(), 1024, [&](std::size_t k) {
+        second[k] = k > 0 && reverse_of(pending[k - 1], pending[k]);
+    });
     parallel_for_index(pending.size(), 16, [&](std::size_t k) {
-        if (k > 0 && reverse_of(pending[k - 1], pending[k]))
+        if (second[k])
             return; // made with the link before it
         const std::uint32_t q = pending[k].receiver, p = pending[k].source;
-        if (k + 1 == pending.size() || !reverse_of(pending[k], pending[k + 1])) {
+        if (k + 1 == pending.size() || !second[k + 1]) {
             const Link* old = indexed ? find_link(p, q, first) : nullptr;
             pending[k] = old ? reverse_link(*old) : make_link(q, p);
             return;

@@ -176,8 +176,6 @@ PairVisibility pair_visibility(const Quadrature& quad, const PointValues& f,
         for (std::size_t k = 0; k < 3; ++k)
             d[k] = normalize(b.v[k] - x);
     };
-    std::array<Vec3, 3> dc;
-    directions(centroid_a, dc);
     const bool by_angle = solid_angle_triangle(centroid_a, b.v) > k_solid_angle_sampling;
     // Called for every element pair: no allocation per call (visibility queries start no
     // parallel work that could run another pair on this thread).
@@ -255,8 +253,8 @@ int quadrature_level_for(const OrientedTriangle& a, const OrientedTriangle& b,
     if (is_near(a, b)) {
         if (settings.apart_quadrature_level >= settings.near_quadrature_level)
             return settings.near_quadrature_level;
-        // Only a pair that touches (a shared vertex or one on the other's edge) has the
-        // steep part by a common edge that the fine rule is for.
+        // Only a pair that touches (a shared vertex) has the steep part by a common edge that
+        // the fine rule is for.
         const double tol = 1e-6 * (longest_edge(a.v) + longest_edge(b.v));
         for (const Vec3& p : a.v)
             for (const Vec3& q : b.v)

@@ -296,12 +296,14 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
     links_.reserve(kept + 4 * splits.size());
     for (const Split& l : splits)
         for (int c = 0; c < 4; ++c) {
-            if (l.decision == split_receiver)
-                links_.emplace_back(std::uint32_t(h_.first_child[l.receiver] + c), l.source,
-                                    0.0f, 0.0f, false);
-            else
-                links_.emplace_back(l.receiver, std::uint32_t(h_.first_child[l.source] + c),
-                                    0.0f, 0.0f, false);
+            const std::uint32_t q = l.decision == split_receiver
+                                        ? std::uint32_t(h_.first_child[l.receiver] + c)
+                                        : l.receiver;
+            const std::uint32_t p = l.decision == split_receiver
+                                        ? l.source
+                                        : std::uint32_t(h_.first_child[l.source] + c);
+            if (faces(h_, q, p, 1e-9 * h_.diagonal)) // a part may lie behind the other end
+                links_.emplace_back(q, p, 0.0f, 0.0f, false);
         }
     splits = {};
     make_pair_links(kept, false);

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
-#include <span>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 #include "core/error.h"

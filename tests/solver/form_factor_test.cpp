@@ -4,13 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include <gtest/gtest.h>
 
 #include "core/rng.h"
 #include "core/visibility.h"
 #include "element_rows.h"
-
-#include <gtest/gtest.h>
 
 namespace penumbra::solver {
 namespace {

@@ -1,6 +1,7 @@
 #include "cluster_transport.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "core/parallel.h"
 
@@ -12,10 +13,17 @@ struct SourceTerm {
     Rgb emitted, total; ///< Σ E A cos and Σ B A cos toward the receiver, times g · v
 };
 
-SourceTerm source_term(const Hierarchy& h, const ClusterValues& cv, const std::vector<Rgb>& b,
-                       const ClusterLink& link, bool increment) {
-    const Vec3 toward_receiver = -Vec3(link.d);
+SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterValues& cv,
+                       const std::vector<Rgb>& b, const ClusterLink& link, bool increment) {
     const float scale = link.g * link.v;
+    if (link.exact) { // F · v times the radiosity the source sends it
+        const bool element = !is_cluster(link.source);
+        return {element && increment
+                    ? Rgb{}
+                    : links.exact_source_radiosity(link, cv.exitance_emitted, h.emission) * scale,
+                links.exact_source_radiosity(link, cv.exitance, b) * scale};
+    }
+    const Vec3 toward_receiver = -Vec3(link.d);
     if (is_cluster(link.source)) {
         const std::uint32_t c = cluster_index(link.source);
         return {lobe_projection(cv.exitance_emitted[c], toward_receiver) * scale,
@@ -52,8 +60,10 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
-            const SourceTerm s = source_term(h, cv, b, l, increment);
-            const float cosine = float(std::max(0.0, dot(h.normal[q], Vec3(l.d))));
+            const SourceTerm s = source_term(h, links, cv, b, l, increment);
+            // An exact link's F holds the cosines.
+            const float cosine =
+                l.exact ? 1.0f : float(std::max(0.0, dot(h.normal[q], Vec3(l.d))));
             direct += s.emitted * cosine;
             indirect += (s.total - s.emitted) * cosine;
         }
@@ -66,9 +76,12 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
-            const SourceTerm s = source_term(h, cv, b, l, increment);
-            lobe_deposit(direct, Vec3(l.d), s.emitted);
-            lobe_deposit(indirect, Vec3(l.d), s.total - s.emitted);
+            const SourceTerm s = source_term(h, links, cv, b, l, increment);
+            // An exact link's irradiance is the plane's: deposited along its normal, every
+            // root of the face cluster reads it back whole.
+            const Vec3 along = l.exact ? tree.normal[c] : Vec3(l.d);
+            lobe_deposit(direct, along, s.emitted);
+            lobe_deposit(indirect, along, s.total - s.emitted);
         }
         cv.gathered_direct[c] = direct;
         cv.gathered_indirect[c] = indirect;
@@ -101,11 +114,15 @@ void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vecto
                    ClusterValues& cv) {
     pull_lobes(tree, h, b, cv.exitance);
     cv.peak.assign(tree.size(), 0.0f);
+    cv.trough.assign(tree.size(), std::numeric_limits<float>::infinity());
     for (std::size_t c = tree.size(); c-- > 0;) // children after parents
         for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
             const NodeRef child = tree.children[k];
-            cv.peak[c] = std::max(cv.peak[c], is_cluster(child) ? cv.peak[cluster_index(child)]
-                                                                : b[child].max_component());
+            const bool cluster = is_cluster(child);
+            const float value = cluster ? 0.0f : b[child].max_component();
+            cv.peak[c] = std::max(cv.peak[c], cluster ? cv.peak[cluster_index(child)] : value);
+            cv.trough[c] =
+                std::min(cv.trough[c], cluster ? cv.trough[cluster_index(child)] : value);
         }
 }
 

@@ -14,6 +14,7 @@ struct ClusterValues {
     std::vector<Lobes> exitance_emitted;  ///< Σ E A cos lobes per cluster (fixed)
     std::vector<Lobes> exitance;          ///< Σ B A cos lobes per cluster
     std::vector<float> peak;              ///< largest radiosity of a root (largest channel)
+    std::vector<float> trough;            ///< smallest (of the same channel)
     std::vector<Lobes> gathered_direct;   ///< irradiance lobes gathered by each cluster
     std::vector<Lobes> gathered_indirect;
     std::vector<Rgb> root_direct;         ///< irradiance pushed down to each root

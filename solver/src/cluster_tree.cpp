@@ -178,6 +178,8 @@ ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size) {
         tree.hi.push_back(box.hi);
         tree.area.push_back(area);
         tree.parent.push_back(range.parent);
+        tree.planar.push_back(range.of_items ? 0 : 1);
+        tree.normal.push_back(range.of_items ? Vec3{} : h.normal[order[range.begin]]);
         tree.child_begin.push_back(std::uint32_t(tree.children.size()));
         if (count <= leaf_size) {
             for_roots(range, [&](std::uint32_t r) { tree.children.push_back(r); });

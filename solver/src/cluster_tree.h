@@ -53,6 +53,10 @@ struct ClusterTree {
     /// root elements in leaf clusters. Parents precede their children.
     std::vector<std::uint32_t> child_begin;
     std::vector<NodeRef> children;
+    /// The cluster's roots are of one planar group (one oriented plane, connected): a face
+    /// cluster, which may exchange light through exact links (hr_links.h) like an element.
+    std::vector<std::uint8_t> planar;
+    std::vector<Vec3> normal; ///< of a planar cluster's plane (zero for the others)
 
     std::size_t size() const { return area.size(); }
     Vec3 centre(std::uint32_t c) const { return (lo[c] + hi[c]) * 0.5; }

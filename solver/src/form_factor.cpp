@@ -37,15 +37,8 @@ double form_factor_point_polygon(const Vec3& x, const Vec3& n, const Vec3* poly,
     if (m < 3)
         return 0.0;
     double sum = 0.0;
-    for (std::size_t i = 0; i < m; ++i) {
-        Vec3 r0 = clipped[i] - x, r1 = clipped[(i + 1) % m] - x;
-        Vec3 c = cross(r0, r1);
-        double c_len = length(c);
-        if (c_len <= 1e-300)
-            continue;
-        double gamma = std::atan2(c_len, dot(r0, r1));
-        sum += gamma * dot(n, c) / c_len;
-    }
+    for (std::size_t i = 0; i < m; ++i)
+        sum += contour_term(x, n, clipped[i], clipped[(i + 1) % m]);
     return std::abs(sum) / (2.0 * k_pi);
 }
 

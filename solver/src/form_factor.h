@@ -17,6 +17,17 @@ namespace penumbra::solver {
 double form_factor_point_polygon(const Vec3& x, const Vec3& n, const Vec3* poly,
                                  std::size_t count);
 
+/// \brief One edge's term of the contour sum, γ n·Γ: F = |Σ over a polygon's edges| / 2π
+///        where the whole polygon lies in front of x's tangent plane.
+inline double contour_term(const Vec3& x, const Vec3& n, const Vec3& a, const Vec3& b) {
+    const Vec3 r0 = a - x, r1 = b - x;
+    const Vec3 c = cross(r0, r1);
+    const double c_len = length(c);
+    if (c_len <= 1e-300)
+        return 0.0;
+    return std::atan2(c_len, dot(r0, r1)) * dot(n, c) / c_len;
+}
+
 inline double form_factor_point_triangle(const Vec3& x, const Vec3& n,
                                          const std::array<Vec3, 3>& tri) {
     return form_factor_point_polygon(x, n, tri.data(), 3);

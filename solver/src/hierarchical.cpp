@@ -181,9 +181,11 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
         init_cluster_values(clusters.tree, h, v.b, clusters.values);
         const ClusterValues& cv = clusters.values;
         if (reuse)
-            links.attach_clusters(clusters.tree, cv.exitance, cv.exitance_emitted, cv.peak);
+            links.attach_clusters(clusters.tree, cv.exitance, cv.exitance_emitted, cv.peak,
+                                  cv.trough);
         else
-            links.link_clusters(clusters.tree, cv.exitance, cv.exitance_emitted, cv.peak);
+            links.link_clusters(clusters.tree, cv.exitance, cv.exitance_emitted, cv.peak,
+                                  cv.trough);
         ctx.info("hierarchical: {} clusters over {} elements", clusters.tree.size(),
                  h.root_count);
     }

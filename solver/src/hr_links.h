@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <span>
 #include <utility>
 #include <vector>
@@ -51,21 +52,40 @@ struct LightLink {
     std::uint8_t partial = 0; ///< partly occluded, or across a spot's hard cone edge
 };
 
+/// The spread of an exact link that ClusterLink::unresolved().
+inline constexpr float k_unresolved = std::numeric_limits<float>::max();
+
 /// A link with a cluster at one end or both (Smits et al. 1994): the source is seen as a point
 /// of intensity (1/π) Σ B A cos toward the receiver, the receiver as a point at its centre.
+///
+/// An exact link joins two planar ends (face clusters or elements, one of them a cluster) as
+/// an element link joins two elements: g is the form factor F from the receiver to the
+/// source, averaged over the receiver, v its visible fraction, and the receiver's plane takes
+/// F · v · B̄ (B̄ the source's mean radiosity) whatever the direction between the ends. So a
+/// tessellated wall and the floor it stands on exchange light through one link until the
+/// oracle asks for more, as two untessellated polygons would.
 struct ClusterLink {
     NodeRef receiver = 0, source = 0;
-    /// Mean 1 / (π d²) over the open rays between the two ends (all if none), scaled to their
-    /// true cosines (cast_cluster_rays)
+    /// Lobe links: mean 1 / (π d²) over the open rays between the two ends (all if none),
+    /// scaled to their true cosines (cast_cluster_rays). Exact links: F without occlusion.
     float g = 0;
     float v = 0;   ///< visible fraction from the link's rays
-    Vec3f d;       ///< unit direction from the receiver's centre to the source's centre
-    std::uint8_t partial = 0; ///< the rays disagreed
-    std::uint8_t self = 0;    ///< a cluster's link to itself: carries nothing until refined
+    /// Lobe links: unit direction from the receiver's centre to the source's centre. Exact
+    /// links: the spread of the point form factors over the receiver, and (of a cluster
+    /// source) the share of F that its first half takes (LinkSet::exact_source_radiosity).
+    Vec3f d;
+    std::uint8_t partial : 1 = 0; ///< the rays disagreed
+    std::uint8_t self : 1 = 0;    ///< a cluster's link to itself: carries nothing until refined
+    std::uint8_t exact : 1 = 0;   ///< an exact link between planar ends
     /// Visibility rays cast (0 where no surface of one end faces the other): 4, more for a
     /// link all of whose rays were blocked while the oracle was unsure of it.
     std::uint16_t rays = 0;
+
+    float spread() const { return d.x; } ///< of an exact link
+    /// An exact link whose form factor its points do not resolve: the oracle splits it.
+    bool unresolved() const { return exact && d.x == k_unresolved; }
 };
+static_assert(sizeof(ClusterLink) == 32);
 
 /// What the refinement oracle weighs against ε: F·B (Hanrahan et al.'s BF), or ΔF·B + F·ΔB:
 /// the variation of the form factor over the receiver times the source radiosity (the error
@@ -109,10 +129,12 @@ public:
     /// \p emitted is the clusters' emitted exitance lobes (Σ E A cos): the oracle holds the
     /// direct light a link brings to a tighter bound than the reflected.
     void link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
-                       const std::vector<Lobes>& emitted, const std::vector<float>& peak);
+                       const std::vector<Lobes>& emitted, const std::vector<float>& peak,
+                       const std::vector<float>& trough);
     /// Uses \p tree (as link_clusters) without making links.
     void attach_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
-                         const std::vector<Lobes>& emitted, const std::vector<float>& peak);
+                         const std::vector<Lobes>& emitted, const std::vector<float>& peak,
+                         const std::vector<float>& trough);
     /// Takes saved links (a re-solve) and links the lights anew (their intensities may have
     /// changed).
     void restore(std::span<const Link> links, std::span<const ClusterLink> cluster_links);
@@ -130,6 +152,11 @@ public:
                 const std::function<void(const RefinePass&)>& on_pass = {});
 
     std::span<const Link> links() const { return links_.span(); }
+    /// The radiosity an exact link's source sends it: an element's own; a face cluster's
+    /// two halves' mean radiosities (from \p lobes, or \p element for roots) weighted by
+    /// their shares of the link's form factor.
+    Rgb exact_source_radiosity(const ClusterLink& link, const std::vector<Lobes>& lobes,
+                               const std::vector<Rgb>& element) const;
     /// Moves the element links (or the cluster links) out, leaving the link set without them.
     MappedArray<Link> take_links() { return std::exchange(links_, {}); }
     MappedArray<ClusterLink> take_cluster_links() { return std::exchange(cluster_links_, {}); }
@@ -213,6 +240,7 @@ private:
                             const std::vector<Rgb>& element, double spread) const;
     Vec3 node_centre(NodeRef n) const;
     double node_radius(NodeRef n) const;
+    double node_area(NodeRef n) const;
     bool splittable(NodeRef n) const;
     /// Some surface of cluster \p c may face some point of \p other (by its axis lobes and
     /// the bounding boxes: conservative).
@@ -221,6 +249,53 @@ private:
                              const std::vector<double>& running) const;
     template <typename Fn>
     void for_each_child(NodeRef n, Fn&& fn) const;
+    struct Plane {
+        Vec3 n;
+        double d = 0; ///< n · (a point of the plane)
+    };
+    // Exact links (hr_exact_links.cpp).
+    /// An edge of a face cluster's boundary: from corner \p from to corner \p to of a root.
+    struct BoundaryEdge {
+        std::uint32_t root = 0;
+        std::uint8_t from = 0, to = 0;
+    };
+    struct WeightedPoint {
+        Vec3 x;
+        double w = 0;
+    };
+    /// An element or a face cluster: an end of exact links.
+    bool planar_end(NodeRef n) const;
+    /// A planar end none of whose surfaces emits: the source of exact links (the vertices
+    /// gather emitters through element links, leaf_direct in hierarchical.cpp).
+    bool exact_source(NodeRef n) const;
+    Plane node_plane(NodeRef n) const;
+    /// Distance between the bounds of two nodes (0 where they overlap).
+    double box_gap(NodeRef a, NodeRef b) const;
+    /// An element's vertices, or the corners of a cluster's bounds.
+    template <typename Fn>
+    void for_each_corner(NodeRef n, Fn&& fn) const;
+    /// The face clusters' boundaries (boundary_) and which are exact sources.
+    void build_boundaries();
+    /// F from a point \p x of normal \p n to planar end \p p of plane \p plane; sets
+    /// \p unresolved where p is a cluster too large to clip to x's hemisphere.
+    double point_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const Plane& plane,
+                             bool& unresolved) const;
+    /// The end (in dfs_roots_) of face cluster \p c's first half: its first child cluster,
+    /// or the first half of its roots.
+    std::uint32_t first_half(std::uint32_t c) const;
+    /// F from point \p x to that first half.
+    double half_form_factor(const Vec3& x, const Vec3& n, std::uint32_t c, std::uint32_t split,
+                            const Plane& plane, bool& unresolved) const;
+    /// Quadrature points over planar end \p q (at most \p count), weights summing to 1.
+    void receiver_points(NodeRef q, int count, std::vector<WeightedPoint>& out) const;
+    /// A point of planar end \p n, its root drawn by the running sum \p running (dfs_area_
+    /// or dfs_exitance_), uniform within the root.
+    Vec3 sample_point(NodeRef n, Pcg32& rng, const std::vector<double>& running) const;
+    ClusterLink make_exact_link(NodeRef q, NodeRef p) const;
+    /// The element oracle's estimate for an exact link, with the source's mean radiosity
+    /// and its range over the source (clusters: peak − trough of its roots).
+    double exact_link_error(const ClusterLink& link, const std::vector<Rgb>& b,
+                            const std::vector<float>& b_range) const;
 
     Hierarchy& h_;
     std::vector<std::int32_t>& twin_;
@@ -235,6 +310,11 @@ private:
     const std::vector<Lobes>* exitance_ = nullptr;
     const std::vector<Lobes>* emitted_ = nullptr;
     const std::vector<float>* peak_ = nullptr;
+    const std::vector<float>* trough_ = nullptr;
+    /// Per face cluster c, its boundary boundary_[boundary_begin_[c], boundary_begin_[c + 1]).
+    std::vector<BoundaryEdge> boundary_;
+    std::vector<std::uint32_t> boundary_begin_;
+    std::vector<std::uint8_t> exact_source_; ///< per cluster (exact_source)
     std::vector<Lobes> area_lobes_; ///< per cluster: Σ A max(0, ±n_a)
     /// The roots in depth-first order of the cluster tree, where every cluster is a range
     /// [root_begin_[c], root_end_[c]), and the running sum of their areas (one longer): a
@@ -243,10 +323,6 @@ private:
     std::vector<double> dfs_area_;
     /// The same running sum of area × radiosity (with a floor): source ends are drawn by it.
     std::vector<double> dfs_exitance_;
-    struct Plane {
-        Vec3 n;
-        double d = 0; ///< n · (a point of the plane)
-    };
     std::vector<Plane> dfs_plane_; ///< of each root in dfs_roots_, for the facing test
     OccluderPlanes occluders_;
     /// Per cluster and axis lobe (lobe_index), the bounds of its roots with a normal component

@@ -18,6 +18,7 @@ enum class RngPurpose : std::uint64_t {
     vertex_visibility = 7,
     cluster_visibility = 8,
     sun_visibility = 9,
+    exact_visibility = 10,
 };
 
 /// SplitMix64 finaliser: a strong 64-bit mix.

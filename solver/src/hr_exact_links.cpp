@@ -1,0 +1,412 @@
+// Exact links of hierarchical radiosity (see ClusterLink in hr_links.h): light between two
+// planar ends, one of them a face cluster, computed as between two elements. The receiver's
+// mean form factor comes from point-to-polygon form factors (Lambert's contour) at quadrature
+// points spread over its roots; the source polygon of a face cluster is the boundary of the
+// union of its roots (interior edges cancel in the contour sum), so its cost grows with the
+// cluster's perimeter rather than its root count. The visible fraction is the kernel-weighted
+// share of open rays between area-drawn points of the two ends.
+//
+// Without them, a wall tessellated into 50 triangles and the floor beside it (each a face
+// cluster) are too close for a point model (the lobe links' admissibility), so every pair of
+// their roots gets a link: on a 2x2 office floor of tessellation 5 that made 8.8 M links
+// where the same floor of untessellated rectangles takes 133 k at the same ε.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/parallel.h"
+#include "form_factor.h"
+#include "hr_links.h"
+
+namespace penumbra::solver {
+
+namespace {
+
+/// Quadrature points on a receiver cluster: up to this many (4 for a receiver small against
+/// the distance).
+constexpr int k_exact_points = 64;
+/// A source cluster straddling a quadrature point's tangent plane is clipped triangle by
+/// triangle if it has at most this many roots; a larger one is split by the oracle at once.
+constexpr std::uint32_t k_clip_roots = 64;
+/// An exact link with a receiver cluster closer to its source than this times its radius is
+/// split at once.
+constexpr double k_near_gap = 0.5;
+
+} // namespace
+
+double LinkSet::box_gap(NodeRef a, NodeRef b) const {
+    Vec3 lo[2], hi[2];
+    const NodeRef ends[2] = {a, b};
+    for (int i = 0; i < 2; ++i) {
+        lo[i] = Vec3(1e300, 1e300, 1e300);
+        hi[i] = Vec3(-1e300, -1e300, -1e300);
+        for_each_corner(ends[i], [&](const Vec3& v) {
+            lo[i] = min(lo[i], v);
+            hi[i] = max(hi[i], v);
+        });
+    }
+    Vec3 gap;
+    for (std::size_t k = 0; k < 3; ++k)
+        gap[k] = std::max({0.0, lo[1][k] - hi[0][k], lo[0][k] - hi[1][k]});
+    return length(gap);
+}
+
+bool LinkSet::planar_end(NodeRef n) const {
+    return !is_cluster(n) || tree_->planar[cluster_index(n)] != 0;
+}
+
+bool LinkSet::exact_source(NodeRef n) const {
+    if (!is_cluster(n))
+        return h_.emission[n].is_black();
+    return exact_source_[cluster_index(n)] != 0;
+}
+
+LinkSet::Plane LinkSet::node_plane(NodeRef n) const {
+    if (!is_cluster(n))
+        return {h_.normal[n], dot(h_.normal[n], h_.triangle[n][0])};
+    const std::uint32_t c = cluster_index(n);
+    const Vec3& normal = tree_->normal[c];
+    return {normal, dot(normal, h_.triangle[dfs_roots_[root_begin_[c]]][0])};
+}
+
+template <typename Fn> void LinkSet::for_each_corner(NodeRef n, Fn&& fn) const {
+    if (!is_cluster(n)) {
+        for (const Vec3& v : h_.triangle[n])
+            fn(v);
+        return;
+    }
+    const Vec3& lo = tree_->lo[cluster_index(n)];
+    const Vec3& hi = tree_->hi[cluster_index(n)];
+    for (int k = 0; k < 8; ++k)
+        fn(Vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z));
+}
+
+// Directed boundary edges of every face cluster, children before parents: a cluster's
+// boundary is its children's (a root's: its three edges, wound counter-clockwise about the
+// plane's normal) less the edges that appear both ways. Vertices shared by roots are the
+// same doubles (the mesh's), so an interior edge's two directions compare equal.
+void LinkSet::build_boundaries() {
+    const ClusterTree& tree = *tree_;
+    std::vector<std::vector<BoundaryEdge>> edges(tree.size());
+    auto root_edges = [&](std::uint32_t r, const Vec3& normal, std::vector<BoundaryEdge>& out) {
+        const auto& t = h_.triangle[r];
+        const bool ccw = dot(cross(t[1] - t[0], t[2] - t[0]), normal) >= 0;
+        for (std::uint8_t k = 0; k < 3; ++k) {
+            const auto next = std::uint8_t((k + 1) % 3);
+            out.push_back(ccw ? BoundaryEdge{r, k, next} : BoundaryEdge{r, next, k});
+        }
+    };
+    auto point = [&](std::uint32_t r, std::uint8_t corner) -> const Vec3& {
+        return h_.triangle[r][corner];
+    };
+    auto key = [&](const Vec3& a, const Vec3& b) {
+        return std::array<double, 6>{a.x, a.y, a.z, b.x, b.y, b.z};
+    };
+    for (std::size_t c = tree.size(); c-- > 0;) {
+        if (!tree.planar[c])
+            continue;
+        std::vector<BoundaryEdge> all;
+        for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
+            const NodeRef child = tree.children[k];
+            if (is_cluster(child)) {
+                std::vector<BoundaryEdge>& part = edges[cluster_index(child)];
+                all.insert(all.end(), part.begin(), part.end());
+            } else {
+                root_edges(child, tree.normal[c], all);
+            }
+        }
+        // Cancel an edge against its reverse.
+        std::vector<std::pair<std::array<double, 6>, std::uint32_t>> keyed(all.size());
+        for (std::size_t i = 0; i < all.size(); ++i)
+            keyed[i] = {key(point(all[i].root, all[i].from), point(all[i].root, all[i].to)),
+                        std::uint32_t(i)};
+        std::sort(keyed.begin(), keyed.end());
+        std::vector<BoundaryEdge>& out = edges[c];
+        for (std::size_t i = 0; i < all.size(); ++i) {
+            const BoundaryEdge& e = all[i];
+            const Vec3 &a = point(e.root, e.from), &b = point(e.root, e.to);
+            const auto reverse = key(b, a);
+            const auto it = std::lower_bound(
+                keyed.begin(), keyed.end(), reverse,
+                [](const auto& x, const std::array<double, 6>& k) { return x.first < k; });
+            if (it == keyed.end() || it->first != reverse)
+                out.push_back(e);
+        }
+    }
+    boundary_begin_.assign(tree.size() + 1, 0);
+    for (std::size_t c = 0; c < tree.size(); ++c)
+        boundary_begin_[c + 1] = boundary_begin_[c] + std::uint32_t(edges[c].size());
+    boundary_.clear();
+    boundary_.reserve(boundary_begin_.back());
+    for (const auto& e : edges)
+        boundary_.insert(boundary_.end(), e.begin(), e.end());
+    exact_source_.assign(tree.size(), 0);
+    for (std::size_t c = 0; c < tree.size(); ++c) {
+        if (!tree.planar[c])
+            continue;
+        bool emits = false;
+        for (std::uint32_t k = root_begin_[c]; k < root_end_[c] && !emits; ++k)
+            emits = !h_.emission[dfs_roots_[k]].is_black();
+        exact_source_[c] = !emits;
+    }
+}
+
+double LinkSet::point_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const Plane& plane,
+                                  bool& unresolved) const {
+    const double eps = 1e-9 * h_.diagonal;
+    if (dot(plane.n, x) - plane.d <= eps)
+        return 0.0; // behind the source's plane: it radiates the other way
+    if (!is_cluster(p))
+        return form_factor_point_triangle(x, n, h_.triangle[p]);
+    const std::uint32_t c = cluster_index(p);
+    bool in_front = true;
+    for_each_corner(p, [&](const Vec3& v) { in_front = in_front && dot(v - x, n) >= 0; });
+    if (in_front) { // no clipping: the contour of the union
+        double sum = 0;
+        for (std::uint32_t k = boundary_begin_[c]; k < boundary_begin_[c + 1]; ++k) {
+            const BoundaryEdge& e = boundary_[k];
+            sum += contour_term(x, n, h_.triangle[e.root][e.from], h_.triangle[e.root][e.to]);
+        }
+        return std::abs(sum) / (2.0 * k_pi);
+    }
+    if (root_end_[c] - root_begin_[c] > k_clip_roots) {
+        unresolved = true;
+        return 0.0;
+    }
+    double sum = 0;
+    for (std::uint32_t k = root_begin_[c]; k < root_end_[c]; ++k)
+        sum += form_factor_point_triangle(x, n, h_.triangle[dfs_roots_[k]]);
+    return sum;
+}
+
+std::uint32_t LinkSet::first_half(std::uint32_t c) const {
+    const NodeRef first = tree_->children[tree_->child_begin[c]];
+    if (is_cluster(first))
+        return root_end_[cluster_index(first)];
+    return root_begin_[c] + (root_end_[c] - root_begin_[c] + 1) / 2;
+}
+
+double LinkSet::half_form_factor(const Vec3& x, const Vec3& n, std::uint32_t c, std::uint32_t split,
+                                 const Plane& plane, bool& unresolved) const {
+    const NodeRef first = tree_->children[tree_->child_begin[c]];
+    if (is_cluster(first))
+        return point_form_factor(x, n, first, plane, unresolved);
+    double sum = 0;
+    for (std::uint32_t k = root_begin_[c]; k < split; ++k)
+        sum += form_factor_point_triangle(x, n, h_.triangle[dfs_roots_[k]]);
+    return sum;
+}
+
+Rgb LinkSet::exact_source_radiosity(const ClusterLink& link, const std::vector<Lobes>& lobes,
+                                    const std::vector<Rgb>& element) const {
+    if (!is_cluster(link.source))
+        return element[link.source];
+    const std::uint32_t c = cluster_index(link.source);
+    const Vec3& n = tree_->normal[c];
+    const Rgb all = lobe_projection(lobes[c], n); // Σ B A
+    const NodeRef first = tree_->children[tree_->child_begin[c]];
+    Rgb half;
+    double half_area = 0;
+    if (is_cluster(first)) {
+        half = lobe_projection(lobes[cluster_index(first)], n);
+        half_area = tree_->area[cluster_index(first)];
+    } else {
+        const std::uint32_t split = first_half(c);
+        for (std::uint32_t k = root_begin_[c]; k < split; ++k) {
+            const std::uint32_t r = dfs_roots_[k];
+            half += element[r] * float(h_.area[r]);
+            half_area += h_.area[r];
+        }
+    }
+    const double rest_area = tree_->area[c] - half_area;
+    if (!(half_area > 0) || !(rest_area > 0))
+        return all * float(1.0 / tree_->area[c]);
+    const float share = link.d.y;
+    return half * float(share / half_area) + (all - half) * float((1.0 - share) / rest_area);
+}
+
+void LinkSet::receiver_points(NodeRef q, int count, std::vector<WeightedPoint>& out) const {
+    out.clear();
+    if (!is_cluster(q)) {
+        std::array<std::array<double, 2>, k_max_quadrature_points> bary;
+        std::size_t m = 0;
+        quadrature_barycentrics(count <= 4 ? 1 : (count <= 16 ? 2 : 3), bary.data(), &m);
+        const auto& t = h_.triangle[q];
+        for (std::size_t k = 0; k < m; ++k) {
+            const double b1 = bary[k][0], b2 = bary[k][1];
+            out.push_back({t[0] * (1.0 - b1 - b2) + t[1] * b1 + t[2] * b2, 1.0 / double(m)});
+        }
+        return;
+    }
+    const std::uint32_t c = cluster_index(q), begin = root_begin_[c], end = root_end_[c];
+    const double lo = dfs_area_[begin], range = dfs_area_[end] - lo;
+    if (end - begin <= std::uint32_t(count)) { // every root's centroid, by its area
+        for (std::uint32_t k = begin; k < end; ++k)
+            out.push_back({h_.centroid(dfs_roots_[k]), h_.area[dfs_roots_[k]] / range});
+        return;
+    }
+    // Strata of equal area over the running sum (depth-first order is spatially coherent),
+    // each at its centroid: exact for a linear integrand, as the element rules are.
+    std::uint32_t k = begin;
+    for (int s = 0; s < count; ++s) {
+        const double u0 = lo + double(s) / double(count) * range;
+        const double u1 = lo + double(s + 1) / double(count) * range;
+        Vec3 sum;
+        double weight = 0;
+        while (k < end && dfs_area_[k + 1] <= u0)
+            ++k;
+        for (std::uint32_t j = k; j < end && dfs_area_[j] < u1; ++j) {
+            const double overlap = std::min(dfs_area_[j + 1], u1) - std::max(dfs_area_[j], u0);
+            if (overlap <= 0)
+                continue;
+            sum += h_.centroid(dfs_roots_[j]) * overlap;
+            weight += overlap;
+        }
+        if (weight > 0)
+            out.push_back({sum / weight, 1.0 / double(count)});
+    }
+}
+
+Vec3 LinkSet::sample_point(NodeRef n, Pcg32& rng, const std::vector<double>& running) const {
+    if (!is_cluster(n))
+        return sample_triangle(h_.triangle[n], rng.next_double(), rng.next_double());
+    const std::uint32_t c = cluster_index(n), begin = root_begin_[c], end = root_end_[c];
+    const double u = running[begin] + rng.next_double() * (running[end] - running[begin]);
+    const auto it = std::upper_bound(running.begin() + begin + 1, running.begin() + end + 1, u);
+    const auto k = std::size_t(
+        std::clamp<std::ptrdiff_t>(it - running.begin() - 1, begin, std::ptrdiff_t(end) - 1));
+    return sample_triangle(h_.triangle[dfs_roots_[k]], rng.next_double(), rng.next_double());
+}
+
+ClusterLink LinkSet::make_exact_link(NodeRef q, NodeRef p) const {
+    ClusterLink link;
+    link.receiver = q;
+    link.source = p;
+    link.exact = 1;
+    const Plane pq = node_plane(q), pp = node_plane(p);
+    const double eps = 1e-9 * h_.diagonal;
+    bool q_sees = false, p_sees = false; // some of each end in front of the other's plane
+    for_each_corner(p, [&](const Vec3& v) { q_sees = q_sees || dot(pq.n, v) - pq.d > eps; });
+    for_each_corner(q, [&](const Vec3& v) { p_sees = p_sees || dot(pp.n, v) - pp.d > eps; });
+    if (!q_sees || !p_sees)
+        return link;
+    if (centres_occluded(q, p))
+        return link;
+    // A receiver that straddles the source's plane is split at once, whatever the light: its
+    // quadrature points do not resolve the cut (four points all behind the plane dropped the
+    // light a floor cluster sends to the side of a box standing on it).
+    bool q_behind = false;
+    for_each_corner(q, [&](const Vec3& v) { q_behind = q_behind || dot(pp.n, v) - pp.d < -eps; });
+    // So is a receiver cluster whose gap to the source is small against its size: its
+    // quadrature points do not resolve the steep part of F by their common edge (a tessellated
+    // wall and the floor it stands on got a twentieth of their form factor).
+    if (is_cluster(q) && box_gap(q, p) < k_near_gap * node_radius(q))
+        q_behind = true;
+    // The unoccluded form factor and its spread over the receiver's points.
+    const double r = length(node_centre(p) - node_centre(q));
+    const double ratio = 2.0 * node_radius(q) / std::max(r, 1e-300);
+    thread_local std::vector<WeightedPoint> points;
+    receiver_points(q, ratio < 0.1 ? 4 : (ratio < 0.4 ? 16 : k_exact_points), points);
+    double f = 0, lo = std::numeric_limits<double>::infinity(), hi = 0;
+    bool unresolved = q_behind;
+    // A cluster source's first half (first_half) takes this share of the form factor.
+    double f_first = 0;
+    const std::uint32_t split = is_cluster(p) ? first_half(cluster_index(p)) : 0;
+    for (const WeightedPoint& x : points) {
+        const double fx = point_form_factor(x.x, pq.n, p, pp, unresolved);
+        f += x.w * fx;
+        lo = std::min(lo, fx);
+        hi = std::max(hi, fx);
+        if (is_cluster(p) && fx > 0)
+            f_first += x.w * half_form_factor(x.x, pq.n, cluster_index(p), split, pp, unresolved);
+    }
+    if (!(f > 0) && !unresolved)
+        return link;
+    link.g = float(f);
+    link.d.y = f > 0 ? float(std::clamp(f_first / f, 0.0, 1.0)) : 0.5f;
+    link.d.x = unresolved ? k_unresolved : float(hi - lo);
+    // The visible fraction of the light sent: kernel-weighted rays from area-drawn points of
+    // the receiver to points of the source drawn by exitance (area × radiosity, as for lobe
+    // links). Drawn by area, the dark part of a ceiling above a lamp (which sends into the
+    // lamp's back) counted at the ceiling's mean radiosity, and the lamp room lost 0.26 % of
+    // its power.
+    Pcg32 rng = Pcg32::for_stream(RngPurpose::exact_visibility, q, p, 0, settings_.rows.seed);
+    const int rays = std::max(settings_.rows.visibility_rays, 4);
+    thread_local std::vector<Segment> segments;
+    thread_local std::vector<double> kernel;
+    thread_local std::vector<std::uint8_t> blocked;
+    thread_local std::vector<std::int32_t> hits;
+    segments.clear();
+    kernel.clear();
+    for (int k = 0; k < 2 * rays && int(segments.size()) < rays; ++k) {
+        const Vec3 xq = sample_point(q, rng, dfs_area_), xp = sample_point(p, rng, dfs_exitance_);
+        const Vec3 w = xp - xq;
+        const double d2 = dot(w, w);
+        const double cq = dot(pq.n, w), cp = -dot(pp.n, w);
+        if (!(d2 > 0) || cq <= 0 || cp <= 0)
+            continue; // no transfer between these two points
+        const Vec3 from = xq + pq.n * settings_.offset, to = xp + pp.n * settings_.offset;
+        segments.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
+        kernel.push_back(cq * cp / (d2 * d2));
+    }
+    if (segments.empty()) { // the transfer is where no ray was drawn: unknown
+        link.v = 1.0f;
+        link.partial = 1;
+        return link;
+    }
+    hits.resize(segments.size());
+    visibility_.first_hit(segments, hits);
+    double all = 0, open = 0;
+    int open_rays = 0;
+    for (std::size_t k = 0; k < segments.size(); ++k) {
+        all += kernel[k];
+        if (hits[k] == -1) {
+            open += kernel[k];
+            ++open_rays;
+        }
+    }
+    link.rays = std::uint16_t(segments.size());
+    if (open_rays == 0) {
+        bool certified = certified_occluded(q, p, hits);
+        if (!certified) { // the first hits from the source's end
+            for (Segment& s : segments)
+                s = {s.origin + s.direction, s.direction * -1.0f, s.tnear, s.tfar};
+            visibility_.first_hit(segments, hits);
+            certified = certified_occluded(q, p, hits);
+        }
+        if (certified) {
+            link.g = link.v = 0.0f; // carries nothing: the refinement drops it
+            return link;
+        }
+    }
+    link.v = float(all > 0 ? open / all : 0.0);
+    link.partial = open_rays > 0 && open_rays < int(segments.size());
+    return link;
+}
+
+double LinkSet::exact_link_error(const ClusterLink& link, const std::vector<Rgb>& b,
+                                 const std::vector<float>& b_range) const {
+    if (link.unresolved())
+        return std::numeric_limits<double>::infinity();
+    const NodeRef p = link.source;
+    double mean = 0, range = 0;
+    if (is_cluster(p)) {
+        const std::uint32_t c = cluster_index(p);
+        mean = double(lobe_projection((*exitance_)[c], tree_->normal[c]).max_component()) /
+               tree_->area[c];
+        range = std::max(0.0, double((*peak_)[c]) - double((*trough_)[c]));
+    } else {
+        mean = double(b[p].max_component());
+        range = double(b_range[p]);
+    }
+    const double f = double(link.g), visible = double(link.v);
+    const double estimate = settings_.oracle == Oracle::bf
+                                ? f * visible * mean
+                                : double(link.spread()) * mean + f * visible * range;
+    // All rays blocked: n of them cannot tell 0 from about 1/n.
+    const double uncertain = link.v > 0 || link.rays == 0 ? 0.0 : f * mean / double(link.rays);
+    return estimate * (link.partial ? 2.0 : 1.0) + uncertain;
+}
+
+} // namespace penumbra::solver

@@ -303,13 +303,17 @@ ClusterLink LinkSet::make_exact_link(NodeRef q, NodeRef p) const {
     // wall and the floor it stands on got a twentieth of their form factor).
     if (is_cluster(q) && box_gap(q, p) < k_near_gap * node_radius(q))
         q_behind = true;
+    if (q_behind) { // split before any gather: nothing to compute
+        link.d.x = k_unresolved;
+        return link;
+    }
     // The unoccluded form factor and its spread over the receiver's points.
     const double r = length(node_centre(p) - node_centre(q));
     const double ratio = 2.0 * node_radius(q) / std::max(r, 1e-300);
     thread_local std::vector<WeightedPoint> points;
     receiver_points(q, ratio < 0.1 ? 4 : (ratio < 0.4 ? 16 : k_exact_points), points);
     double f = 0, lo = std::numeric_limits<double>::infinity(), hi = 0;
-    bool unresolved = q_behind;
+    bool unresolved = false;
     // A cluster source's first half (first_half) takes this share of the form factor.
     double f_first = 0;
     const std::uint32_t split = is_cluster(p) ? first_half(cluster_index(p)) : 0;

@@ -134,15 +134,9 @@ Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec
     // A root below the cluster, chosen by its weight in \p running (a running sum over the
     // roots in depth-first order), until one faces \p toward (a property of its plane, so no
     // point is drawn for the others).
-    const std::uint32_t c = cluster_index(n), begin = root_begin_[c], end = root_end_[c];
-    const double lo = running[begin], range = running[end] - lo;
+    const std::uint32_t c = cluster_index(n);
     for (int attempt = 0; attempt < k_facing_tries; ++attempt) {
-        const double u = lo + rng.next_double() * range;
-        // The first root whose running sum passes u.
-        const auto it =
-            std::upper_bound(running.begin() + begin + 1, running.begin() + end + 1, u);
-        const auto k = std::size_t(std::clamp<std::ptrdiff_t>(it - running.begin() - 1,
-                                                               begin, std::ptrdiff_t(end) - 1));
+        const std::size_t k = draw_root(c, rng.next_double(), running);
         if (dot(toward, dfs_plane_[k].n) <= dfs_plane_[k].d)
             continue;
         const std::uint32_t e = dfs_roots_[k];
@@ -151,6 +145,16 @@ Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec
     }
     normal = Vec3{};
     return Vec3{};
+}
+
+std::size_t LinkSet::draw_root(std::uint32_t c, double u,
+                               const std::vector<double>& running) const {
+    const std::uint32_t begin = root_begin_[c], end = root_end_[c];
+    const double x = running[begin] + u * (running[end] - running[begin]);
+    // The first root whose running sum passes x.
+    const auto it = std::upper_bound(running.begin() + begin + 1, running.begin() + end + 1, x);
+    return std::size_t(
+        std::clamp<std::ptrdiff_t>(it - running.begin() - 1, begin, std::ptrdiff_t(end) - 1));
 }
 
 bool LinkSet::faces_box(std::uint32_t c, NodeRef other) const {
@@ -297,14 +301,7 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
         g_open *= std::min(k_max_calibration, open * true_open / (g_open * cosines_open));
     const double total = before + double(segments.size());
     if (open == 0 && !hits.empty()) {
-        bool certified = certified_occluded(link.receiver, link.source, hits);
-        if (!certified) { // the first hits from the source's end: a wall behind its furniture
-            for (Segment& s : segments)
-                s = {s.origin + s.direction, s.direction * -1.0f, s.tnear, s.tfar};
-            visibility_.first_hit(segments, hits);
-            certified = certified_occluded(link.receiver, link.source, hits);
-        }
-        if (certified) {
+        if (certified_blocked(link.receiver, link.source, segments, hits)) {
             link.rays = std::uint16_t(total);
             link.g = link.v = 0.0f; // carries nothing: the refinement drops it
             return true;
@@ -370,6 +367,17 @@ bool LinkSet::shaft_end(NodeRef n, NodeRef other, std::uint32_t plane, double si
                 [&](const Vec3& x) { on_side = on_side && beyond(x) > tol; });
     }
     return on_side;
+}
+
+bool LinkSet::certified_blocked(NodeRef q, NodeRef p, std::vector<Segment>& segments,
+                                std::vector<std::int32_t>& hits) const {
+    if (certified_occluded(q, p, hits))
+        return true;
+    // The first hits from the source's end: a wall behind its furniture.
+    for (Segment& s : segments)
+        s = {s.origin + s.direction, s.direction * -1.0f, s.tnear, s.tfar};
+    visibility_.first_hit(segments, hits);
+    return certified_occluded(q, p, hits);
 }
 
 bool LinkSet::centres_occluded(NodeRef q, NodeRef p) const {

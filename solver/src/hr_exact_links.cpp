@@ -4,7 +4,8 @@
 // points spread over its roots; the source polygon of a face cluster is the boundary of the
 // union of its roots (interior edges cancel in the contour sum), so its cost grows with the
 // cluster's perimeter rather than its root count. The visible fraction is the kernel-weighted
-// share of open rays between area-drawn points of the two ends.
+// share of open rays between area-drawn points of the receiver and exitance-drawn points of
+// the source.
 //
 // Without them, a wall tessellated into 50 triangles and the floor beside it (each a face
 // cluster) are too close for a point model (the lobe links' admissibility), so every pair of
@@ -15,7 +16,6 @@
 #include <cmath>
 #include <limits>
 
-#include "core/parallel.h"
 #include "form_factor.h"
 #include "hr_links.h"
 
@@ -174,8 +174,13 @@ double LinkSet::point_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const
         unresolved = true;
         return 0.0;
     }
+    return root_form_factors(x, n, root_begin_[c], root_end_[c]);
+}
+
+double LinkSet::root_form_factors(const Vec3& x, const Vec3& n, std::uint32_t begin,
+                                  std::uint32_t end) const {
     double sum = 0;
-    for (std::uint32_t k = root_begin_[c]; k < root_end_[c]; ++k)
+    for (std::uint32_t k = begin; k < end; ++k)
         sum += form_factor_point_triangle(x, n, h_.triangle[dfs_roots_[k]]);
     return sum;
 }
@@ -192,10 +197,7 @@ double LinkSet::half_form_factor(const Vec3& x, const Vec3& n, std::uint32_t c, 
     const NodeRef first = tree_->children[tree_->child_begin[c]];
     if (is_cluster(first))
         return point_form_factor(x, n, first, plane, unresolved);
-    double sum = 0;
-    for (std::uint32_t k = root_begin_[c]; k < split; ++k)
-        sum += form_factor_point_triangle(x, n, h_.triangle[dfs_roots_[k]]);
-    return sum;
+    return root_form_factors(x, n, root_begin_[c], split);
 }
 
 Rgb LinkSet::exact_source_radiosity(const ClusterLink& link, const std::vector<Lobes>& lobes,
@@ -271,11 +273,7 @@ void LinkSet::receiver_points(NodeRef q, int count, std::vector<WeightedPoint>& 
 Vec3 LinkSet::sample_point(NodeRef n, Pcg32& rng, const std::vector<double>& running) const {
     if (!is_cluster(n))
         return sample_triangle(h_.triangle[n], rng.next_double(), rng.next_double());
-    const std::uint32_t c = cluster_index(n), begin = root_begin_[c], end = root_end_[c];
-    const double u = running[begin] + rng.next_double() * (running[end] - running[begin]);
-    const auto it = std::upper_bound(running.begin() + begin + 1, running.begin() + end + 1, u);
-    const auto k = std::size_t(
-        std::clamp<std::ptrdiff_t>(it - running.begin() - 1, begin, std::ptrdiff_t(end) - 1));
+    const std::size_t k = draw_root(cluster_index(n), rng.next_double(), running);
     return sample_triangle(h_.triangle[dfs_roots_[k]], rng.next_double(), rng.next_double());
 }
 
@@ -339,7 +337,6 @@ ClusterLink LinkSet::make_exact_link(NodeRef q, NodeRef p) const {
     const int rays = std::max(settings_.rows.visibility_rays, 4);
     thread_local std::vector<Segment> segments;
     thread_local std::vector<double> kernel;
-    thread_local std::vector<std::uint8_t> blocked;
     thread_local std::vector<std::int32_t> hits;
     segments.clear();
     kernel.clear();
@@ -371,18 +368,9 @@ ClusterLink LinkSet::make_exact_link(NodeRef q, NodeRef p) const {
         }
     }
     link.rays = std::uint16_t(segments.size());
-    if (open_rays == 0) {
-        bool certified = certified_occluded(q, p, hits);
-        if (!certified) { // the first hits from the source's end
-            for (Segment& s : segments)
-                s = {s.origin + s.direction, s.direction * -1.0f, s.tnear, s.tfar};
-            visibility_.first_hit(segments, hits);
-            certified = certified_occluded(q, p, hits);
-        }
-        if (certified) {
-            link.g = link.v = 0.0f; // carries nothing: the refinement drops it
-            return link;
-        }
+    if (open_rays == 0 && certified_blocked(q, p, segments, hits)) {
+        link.g = link.v = 0.0f; // carries nothing: the refinement drops it
+        return link;
     }
     link.v = float(all > 0 ? open / all : 0.0);
     link.partial = open_rays > 0 && open_rays < int(segments.size());

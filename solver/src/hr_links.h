@@ -205,6 +205,11 @@ private:
     /// Whether rays between nodes \p q and \p p that hit the elements \p hits first (-1: none,
     /// -2: unnamed) met a plane that blocks every segment between the two (occluders.h).
     bool certified_occluded(NodeRef q, NodeRef p, std::span<const std::int32_t> hits) const;
+    /// Whether rays \p segments from q to p, all blocked and first hitting \p hits, are
+    /// proved dark by a plane: from q's end, else traced again from p's (which overwrites
+    /// both arrays).
+    bool certified_blocked(NodeRef q, NodeRef p, std::vector<Segment>& segments,
+                           std::vector<std::int32_t>& hits) const;
     /// The same for the segment between their centres, traced both ways (two rays): a proof
     /// that a pair is dark before its form factor is computed or its parts linked.
     bool centres_occluded(NodeRef q, NodeRef p) const;
@@ -245,6 +250,9 @@ private:
     /// Some surface of cluster \p c may face some point of \p other (by its axis lobes and
     /// the bounding boxes: conservative).
     bool faces_box(std::uint32_t c, NodeRef other) const;
+    /// The index in dfs_roots_ of the root of cluster \p c whose share of the running sum
+    /// \p running (dfs_area_ or dfs_exitance_) holds the fraction \p u in [0, 1).
+    std::size_t draw_root(std::uint32_t c, double u, const std::vector<double>& running) const;
     Vec3 sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec3& normal,
                              const std::vector<double>& running) const;
     template <typename Fn>
@@ -286,6 +294,9 @@ private:
     /// F from point \p x to that first half.
     double half_form_factor(const Vec3& x, const Vec3& n, std::uint32_t c, std::uint32_t split,
                             const Plane& plane, bool& unresolved) const;
+    /// Σ of the point form factors from \p x to the roots dfs_roots_[begin, end).
+    double root_form_factors(const Vec3& x, const Vec3& n, std::uint32_t begin,
+                             std::uint32_t end) const;
     /// Quadrature points over planar end \p q (at most \p count), weights summing to 1.
     void receiver_points(NodeRef q, int count, std::vector<WeightedPoint>& out) const;
     /// A point of planar end \p n, its root drawn by the running sum \p running (dfs_area_

@@ -20,8 +20,10 @@ SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterVa
         const bool element = !is_cluster(link.source);
         return {element && increment
                     ? Rgb{}
-                    : links.exact_source_radiosity(link, cv.exitance_emitted, h.emission) * scale,
-                links.exact_source_radiosity(link, cv.exitance, b) * scale};
+                    : links.exact_source_radiosity(link, cv.exitance_emitted, cv.gradient_emitted,
+                                                   h.emission) *
+                          scale,
+                links.exact_source_radiosity(link, cv.exitance, cv.gradient, b) * scale};
     }
     const Vec3 toward_receiver = -Vec3(link.d);
     if (is_cluster(link.source)) {
@@ -40,6 +42,7 @@ SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterVa
 void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
                          ClusterValues& cv) {
     pull_lobes(tree, h, h.emission, cv.exitance_emitted);
+    planar_gradients(tree, h, h.emission, cv.gradient_emitted);
     pull_clusters(tree, h, b, cv);
     cv.gathered_direct.assign(tree.size(), Lobes{});
     cv.gathered_indirect.assign(tree.size(), Lobes{});
@@ -70,26 +73,51 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
         gathered_direct[q] += direct;
         gathered_indirect[q] += indirect;
     });
+    cv.slope_direct.resize(tree.size());
+    cv.slope_indirect.resize(tree.size());
     parallel_for_index(tree.size(), 64, [&](std::size_t c) {
         Lobes direct{}, indirect{};
+        Slope slope_direct{}, slope_indirect{};
         for (std::uint32_t k = by_cluster[c]; k < by_cluster[c + 1]; ++k) {
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
             const SourceTerm s = source_term(h, links, cv, b, l, increment);
             // An exact link's irradiance is the plane's: deposited along its normal, every
-            // root of the face cluster reads it back whole.
+            // root of the face cluster reads it back whole, plus its slope across the plane.
             const Vec3 along = l.exact ? tree.normal[c] : Vec3(l.d);
             lobe_deposit(direct, along, s.emitted);
             lobe_deposit(indirect, along, s.total - s.emitted);
+            if (l.exact && (l.d.z != 0 || l.slope_t != 0) && l.g > 0) {
+                const Vec3 t = links.exact_slope(l) * double(1.0f / l.g);
+                for (std::size_t a = 0; a < 3; ++a) {
+                    slope_direct[a] += s.emitted * float(t[a]);
+                    slope_indirect[a] += (s.total - s.emitted) * float(t[a]);
+                }
+            }
         }
         cv.gathered_direct[c] = direct;
         cv.gathered_indirect[c] = indirect;
+        cv.slope_direct[c] = slope_direct;
+        cv.slope_indirect[c] = slope_indirect;
     });
 }
 
+// The slopes of a face cluster and of its face-cluster ancestors make one linear function
+// over its plane: pushed down as its value at each cluster's centroid (level) and its
+// gradient, read by each root at its centroid. The centroids are area-weighted, so a slope
+// adds no power.
 void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& cv) {
     std::vector<Lobes> down_direct(tree.size()), down_indirect(tree.size());
+    const bool sloped = cv.slope_direct.size() == tree.size();
+    std::vector<Slope> gradient_direct, gradient_indirect;
+    std::vector<Rgb> level_direct, level_indirect;
+    if (sloped) {
+        gradient_direct = cv.slope_direct;
+        gradient_indirect = cv.slope_indirect;
+        level_direct.assign(tree.size(), Rgb{});
+        level_indirect.assign(tree.size(), Rgb{});
+    }
     for (std::size_t c = 0; c < tree.size(); ++c) { // parents before children
         down_direct[c] = cv.gathered_direct[c];
         down_indirect[c] = cv.gathered_indirect[c];
@@ -99,6 +127,17 @@ void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& c
                 down_direct[c][l] += down_direct[parent][l];
                 down_indirect[c][l] += down_indirect[parent][l];
             }
+            if (sloped && tree.planar[parent]) {
+                const Vec3 offset = tree.centroid[c] - tree.centroid[parent];
+                level_direct[c] =
+                    level_direct[parent] + slope_along(gradient_direct[parent], offset);
+                level_indirect[c] =
+                    level_indirect[parent] + slope_along(gradient_indirect[parent], offset);
+                for (std::size_t a = 0; a < 3; ++a) {
+                    gradient_direct[c][a] += gradient_direct[parent][a];
+                    gradient_indirect[c][a] += gradient_indirect[parent][a];
+                }
+            }
         }
         for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
             const NodeRef r = tree.children[k];
@@ -106,6 +145,12 @@ void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& c
                 continue;
             cv.root_direct[r] = lobe_projection(down_direct[c], h.normal[r]);
             cv.root_indirect[r] = lobe_projection(down_indirect[c], h.normal[r]);
+            if (sloped && tree.planar[c]) {
+                const Vec3 offset = h.centroid(r) - tree.centroid[c];
+                cv.root_direct[r] += level_direct[c] + slope_along(gradient_direct[c], offset);
+                cv.root_indirect[r] +=
+                    level_indirect[c] + slope_along(gradient_indirect[c], offset);
+            }
         }
     }
 }
@@ -113,6 +158,7 @@ void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& c
 void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
                    ClusterValues& cv) {
     pull_lobes(tree, h, b, cv.exitance);
+    planar_gradients(tree, h, b, cv.gradient);
     cv.peak.assign(tree.size(), 0.0f);
     cv.trough.assign(tree.size(), std::numeric_limits<float>::infinity());
     for (std::size_t c = tree.size(); c-- > 0;) // children after parents

@@ -167,16 +167,19 @@ ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size) {
         const auto c = std::uint32_t(tree.size());
         BBox box;
         double area = 0;
+        Vec3 moment;
         std::size_t count = 0;
         for_roots(range, [&](std::uint32_t r) {
             for (const Vec3& v : h.triangle[r])
                 box.extend(v);
             area += h.area[r];
+            moment += centroid[r] * h.area[r];
             ++count;
         });
         tree.lo.push_back(box.lo);
         tree.hi.push_back(box.hi);
         tree.area.push_back(area);
+        tree.centroid.push_back(area > 0 ? moment / area : (box.lo + box.hi) * 0.5);
         tree.parent.push_back(range.parent);
         tree.planar.push_back(range.of_items ? 0 : 1);
         tree.normal.push_back(range.of_items ? Vec3{} : h.normal[order[range.begin]]);
@@ -212,6 +215,87 @@ void pull_lobes(const ClusterTree& tree, const Hierarchy& h, const std::vector<R
             for (std::size_t l = 0; l < 6; ++l)
                 sum[l] += part[l];
         }
+    }
+}
+
+// Moments about the origin, summed bottom-up in double (a cluster's small spread about its
+// centroid is their difference), then the 2 × 2 normal equations in the plane's frame.
+void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& value,
+                      std::vector<Slope>& out) {
+    struct Moments {
+        double a = 0;                ///< Σ A
+        Vec3 ax;                     ///< Σ A x
+        std::array<double, 6> axx{}; ///< Σ A x xᵀ: xx, yy, zz, xy, xz, yz
+        std::array<double, 3> av{};  ///< Σ A v, per channel
+        std::array<Vec3, 3> avx{};   ///< Σ A v x, per channel
+        void add(const Moments& o) {
+            a += o.a;
+            ax += o.ax;
+            for (std::size_t k = 0; k < 6; ++k)
+                axx[k] += o.axx[k];
+            for (std::size_t k = 0; k < 3; ++k) {
+                av[k] += o.av[k];
+                avx[k] += o.avx[k];
+            }
+        }
+    };
+    std::vector<Moments> m(tree.size());
+    out.assign(tree.size(), Slope{});
+    for (std::size_t c = tree.size(); c-- > 0;) { // children after parents
+        if (!tree.planar[c])
+            continue;
+        Moments& sum = m[c];
+        for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
+            const NodeRef child = tree.children[k];
+            if (is_cluster(child)) {
+                sum.add(m[cluster_index(child)]);
+                continue;
+            }
+            const double a = h.area[child];
+            const Vec3 x = h.centroid(child);
+            const Rgb& v = value[child];
+            Moments root;
+            root.a = a;
+            root.ax = x * a;
+            root.axx = {a * x.x * x.x, a * x.y * x.y, a * x.z * x.z,
+                        a * x.x * x.y, a * x.x * x.z, a * x.y * x.z};
+            const double channel[3] = {v.r, v.g, v.b};
+            for (std::size_t k2 = 0; k2 < 3; ++k2) {
+                root.av[k2] = a * channel[k2];
+                root.avx[k2] = x * (a * channel[k2]);
+            }
+            sum.add(root);
+        }
+        if (!(sum.a > 0))
+            continue;
+        const Vec3 mean = sum.ax / sum.a;
+        // Covariance of the centroids and covariance of value with position, about the mean.
+        const double cov[3][3] = {
+            {sum.axx[0] / sum.a - mean.x * mean.x, sum.axx[3] / sum.a - mean.x * mean.y,
+             sum.axx[4] / sum.a - mean.x * mean.z},
+            {sum.axx[3] / sum.a - mean.x * mean.y, sum.axx[1] / sum.a - mean.y * mean.y,
+             sum.axx[5] / sum.a - mean.y * mean.z},
+            {sum.axx[4] / sum.a - mean.x * mean.z, sum.axx[5] / sum.a - mean.y * mean.z,
+             sum.axx[2] / sum.a - mean.z * mean.z}};
+        auto quadratic = [&](const Vec3& u, const Vec3& w) {
+            const double uu[3] = {u.x, u.y, u.z}, ww[3] = {w.x, w.y, w.z};
+            double q = 0;
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                    q += uu[i] * cov[i][j] * ww[j];
+            return q;
+        };
+        const Frame frame = Frame::from_normal(tree.normal[c]);
+        const double css = quadratic(frame.s, frame.s), ctt = quadratic(frame.t, frame.t);
+        const double cst = quadratic(frame.s, frame.t);
+        Vec3 gradient[3];
+        for (std::size_t k = 0; k < 3; ++k) {
+            const Vec3 b = sum.avx[k] / sum.a - mean * (sum.av[k] / sum.a);
+            gradient[k] = fit_gradient(frame, css, ctt, cst, dot(b, frame.s), dot(b, frame.t));
+        }
+        for (std::size_t axis = 0; axis < 3; ++axis)
+            out[c][axis] =
+                Rgb(float(gradient[0][axis]), float(gradient[1][axis]), float(gradient[2][axis]));
     }
 }
 

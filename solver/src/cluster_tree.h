@@ -33,6 +33,29 @@ constexpr std::uint32_t cluster_index(NodeRef n) { return n & ~k_cluster_bit; }
 /// Values in the six axis lobes, index 2a for +a and 2a + 1 for −a.
 using Lobes = std::array<Rgb, 6>;
 
+/// A linear function's gradient over a plane: per world axis, its change per metre.
+using Slope = std::array<Rgb, 3>;
+
+/// The change of a function of gradient \p s along \p d.
+inline Rgb slope_along(const Slope& s, const Vec3& d) {
+    return s[0] * float(d.x) + s[1] * float(d.y) + s[2] * float(d.z);
+}
+
+/// \brief The gradient, in the plane of \p frame's s and t axes, of the least-squares linear
+///        fit to values at points whose offsets have covariances \p css, \p ctt, \p cst and
+///        the values' covariances with them \p bs, \p bt. A ridge keeps points along one line
+///        (a strip) from a gradient across it; zero where the points coincide.
+inline Vec3 fit_gradient(const Frame& frame, double css, double ctt, double cst, double bs,
+                         double bt) {
+    const double ridge = 1e-6 * (css + ctt);
+    css += ridge;
+    ctt += ridge;
+    const double det = css * ctt - cst * cst;
+    if (!(det > 0))
+        return {};
+    return frame.s * ((ctt * bs - cst * bt) / det) + frame.t * ((css * bt - cst * bs) / det);
+}
+
 /// Index of the lobe along axis \p a that holds direction component \p component.
 constexpr int lobe_index(int a, double component) { return 2 * a + (component < 0 ? 1 : 0); }
 
@@ -48,6 +71,7 @@ Lobes surface_lobes(const Vec3& n, double area, const Rgb& value);
 struct ClusterTree {
     std::vector<Vec3> lo, hi;   ///< bounds of the elements' vertices
     std::vector<double> area;   ///< summed area of the elements
+    std::vector<Vec3> centroid; ///< area-weighted centroid of the elements
     std::vector<std::int32_t> parent; ///< −1 for the top cluster (index 0)
     /// Children of cluster c are children[child_begin[c] .. child_begin[c + 1]): clusters, or
     /// root elements in leaf clusters. Parents precede their children.
@@ -74,5 +98,12 @@ ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size = 8);
 ///        area (its radiosity for exitance lobes, 1 for area lobes). \p out is resized.
 void pull_lobes(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& value,
                 std::vector<Lobes>& out);
+
+/// \brief Per face cluster, the gradient of the least-squares linear fit, over its plane, of
+///        the values \p value[r] of its roots (at their centroids, weighted by area): the
+///        first-order part of how its radiosity varies. Zero for volume clusters. \p out is
+///        resized.
+void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& value,
+                      std::vector<Slope>& out);
 
 } // namespace penumbra::solver

@@ -61,7 +61,8 @@ inline constexpr float k_unresolved = std::numeric_limits<float>::max();
 /// An exact link joins two planar ends (face clusters or elements, one of them a cluster) as
 /// an element link joins two elements: g is the form factor F from the receiver to the
 /// source, averaged over the receiver, v its visible fraction, and the receiver's plane takes
-/// F · v · B̄ (B̄ the source's mean radiosity) whatever the direction between the ends. So a
+/// F · v · B (B what the source sends it, exact_source_radiosity) whatever the direction
+/// between the ends, spread over a cluster receiver by the slope of F. So a
 /// tessellated wall and the floor it stands on exchange light through one link until the
 /// oracle asks for more, as two untessellated polygons would.
 struct ClusterLink {
@@ -71,9 +72,15 @@ struct ClusterLink {
     float g = 0;
     float v = 0;   ///< visible fraction from the link's rays
     /// Lobe links: unit direction from the receiver's centre to the source's centre. Exact
-    /// links: the spread of the point form factors over the receiver, and (of a cluster
-    /// source) the share of F that its first half takes (LinkSet::exact_source_radiosity).
+    /// links: x the spread of the point form factors over the receiver (of a cluster
+    /// receiver: twice their largest departure from the plane of z and slope_t), y (of a cluster
+    /// source) the offset along LinkSet::exact_source_direction of the F-weighted centroid
+    /// of the source (where the receiver sees most of it) from its area centroid: the source
+    /// sends the radiosity of its linear fit there (LinkSet::exact_source_radiosity),
+    /// z (of a cluster receiver) the slope of F per metre along the s axis of its plane's
+    /// Frame (LinkSet::exact_slope).
     Vec3f d;
+    float slope_t = 0;            ///< exact links: the same along the t axis
     std::uint8_t partial : 1 = 0; ///< the rays disagreed
     std::uint8_t self : 1 = 0;    ///< a cluster's link to itself: carries nothing until refined
     std::uint8_t exact : 1 = 0;   ///< an exact link between planar ends
@@ -85,7 +92,7 @@ struct ClusterLink {
     /// An exact link whose form factor its points do not resolve: the oracle splits it.
     bool unresolved() const { return exact && d.x == k_unresolved; }
 };
-static_assert(sizeof(ClusterLink) == 32);
+static_assert(sizeof(ClusterLink) == 36);
 
 /// What the refinement oracle weighs against ε: F·B (Hanrahan et al.'s BF), or ΔF·B + F·ΔB:
 /// the variation of the form factor over the receiver times the source radiosity (the error
@@ -152,11 +159,22 @@ public:
                 const std::function<void(const RefinePass&)>& on_pass = {});
 
     std::span<const Link> links() const { return links_.span(); }
-    /// The radiosity an exact link's source sends it: an element's own; a face cluster's
-    /// two halves' mean radiosities (from \p lobes, or \p element for roots) weighted by
-    /// their shares of the link's form factor.
+    /// The radiosity an exact link's source sends it: an element's own (\p element); a face
+    /// cluster's mean (from \p lobes) plus its \p gradient (planar_gradients; empty for
+    /// none) times the link's offset (ClusterLink::d.y), at least 0.
     Rgb exact_source_radiosity(const ClusterLink& link, const std::vector<Lobes>& lobes,
+                               const std::vector<Slope>& gradient,
                                const std::vector<Rgb>& element) const;
+    /// The gradient (per metre, in its plane) of the form factor of an exact link over its
+    /// cluster receiver, which takes F + gradient · (x − centroid); zero for an element.
+    Vec3 exact_slope(const ClusterLink& link) const;
+    /// The unit direction from an exact link's cluster source's centroid toward its
+    /// receiver, in the source's plane (zero where the receiver is nearly straight above):
+    /// link.d.y is how far along it the part of the source the receiver sees lies.
+    Vec3 exact_source_direction(const ClusterLink& link) const;
+    /// The exact link from planar end \p q to planar end \p p (one a face cluster) as the
+    /// refinement would make it (link_clusters or attach_clusters first): for tests.
+    ClusterLink exact_link(NodeRef q, NodeRef p) const { return make_exact_link(q, p); }
     /// Moves the element links (or the cluster links) out, leaving the link set without them.
     MappedArray<Link> take_links() { return std::exchange(links_, {}); }
     MappedArray<ClusterLink> take_cluster_links() { return std::exchange(cluster_links_, {}); }
@@ -288,12 +306,14 @@ private:
     /// \p unresolved where p is a cluster too large to clip to x's hemisphere.
     double point_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const Plane& plane,
                              bool& unresolved) const;
-    /// The end (in dfs_roots_) of face cluster \p c's first half: its first child cluster,
-    /// or the first half of its roots.
-    std::uint32_t first_half(std::uint32_t c) const;
-    /// F from point \p x to that first half.
-    double half_form_factor(const Vec3& x, const Vec3& n, std::uint32_t c, std::uint32_t split,
-                            const Plane& plane, bool& unresolved) const;
+    /// Area centroid of a node.
+    Vec3 node_centroid(NodeRef n) const;
+    /// The unit direction from face cluster \p from's centroid toward \p toward's, in
+    /// from's plane; zero for an element, or where toward is nearly straight above.
+    Vec3 planar_direction(NodeRef from, NodeRef toward) const;
+    /// How far along planar_direction(p, q) the part of face cluster \p p that \p q sees
+    /// most of lies from p's centroid (ClusterLink::d.y), from \p count points over p.
+    double seen_offset(NodeRef q, NodeRef p, const Plane& pq, const Plane& pp, int count) const;
     /// Σ of the point form factors from \p x to the roots dfs_roots_[begin, end).
     double root_form_factors(const Vec3& x, const Vec3& n, std::uint32_t begin,
                              std::uint32_t end) const;
@@ -303,6 +323,10 @@ private:
     /// or dfs_exitance_), uniform within the root.
     Vec3 sample_point(NodeRef n, Pcg32& rng, const std::vector<double>& running) const;
     ClusterLink make_exact_link(NodeRef q, NodeRef p) const;
+    /// Sets an exact link's slope (cluster receivers) and its spread about that plane, from
+    /// the point form factors \p values at \p points (mean \p f).
+    void fit_slope(ClusterLink& link, const std::vector<WeightedPoint>& points,
+                   const std::vector<double>& values, double f) const;
     /// The element oracle's estimate for an exact link, with the source's mean radiosity
     /// and its range over the source (clusters: peak − trough of its roots).
     double exact_link_error(const ClusterLink& link, const std::vector<Rgb>& b,

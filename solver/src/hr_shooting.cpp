@@ -98,6 +98,7 @@ public:
             const ClusterTree& tree = clusters_.tree;
             ClusterValues cv;
             pull_lobes(tree, h_, shot_, cv.exitance);
+            planar_gradients(tree, h_, shot_, cv.gradient);
             cv.exitance_emitted.assign(tree.size(), Lobes{});
             cv.gathered_direct.assign(tree.size(), Lobes{});
             cv.gathered_indirect.assign(tree.size(), Lobes{});

@@ -20,7 +20,7 @@ namespace {
 
 // Version 4: cluster links index the face-cluster tree, and their kernels are calibrated.
 // Version 5: element links are 16 bytes (the occlusion flag is the spread's sign bit).
-constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '6'};
+constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '7'};
 
 class Writer {
 public:

@@ -113,8 +113,8 @@ struct Pair {
 
 // F of an exact link between two face clusters (the mean over its receiver's points of the
 // contour integral over the source's outline) against the closed forms: within 0.5 %
-// (measured 0.16 to 0.28 %, from 4 points per root). The plane the receiver takes is flat where the pair is
-// symmetric.
+// (measured 0.16 to 0.28 %, from 4 points per root). The plane the receiver takes is flat
+// where the pair is symmetric.
 TEST(ExactLinks, FormFactorMatchesAnalyticRectangles) {
     struct Case {
         double width, gap, expected;

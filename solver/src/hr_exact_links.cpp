@@ -488,9 +488,11 @@ double LinkSet::exact_link_error(const ClusterLink& link, const std::vector<Rgb>
         range = double(b_range[p]);
     }
     const double f = double(link.g), visible = double(link.v);
-    const double estimate = settings_.oracle == Oracle::bf
-                                ? f * visible * mean
-                                : double(link.spread()) * mean + f * visible * range;
+    // A receiver that cannot be split takes the mean of F over it whatever its source's
+    // parts: splitting the source would not lower the error of its one value.
+    const double spread = splittable(link.receiver) ? double(link.spread()) : 0.0;
+    const double estimate =
+        settings_.oracle == Oracle::bf ? f * visible * mean : spread * mean + f * visible * range;
     // All rays blocked: n of them cannot tell 0 from about 1/n.
     const double uncertain = link.v > 0 || link.rays == 0 ? 0.0 : f * mean / double(link.rays);
     // A partly occluded link gives its cluster receiver its mean visibility everywhere,

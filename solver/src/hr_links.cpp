@@ -254,14 +254,16 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         // Hanrahan et al.'s BF oracle: the irradiance the link brings, doubled when partly
         // occluded (its visibility estimate is the least certain part).
         const double b_source = double(b[link.source].max_component());
-        const double estimate =
-            (settings_.oracle == Oracle::bf
-                 ? double(link.ff) * b_source
-                 : double(link.spread()) * b_source + double(link.ff) * b_range[link.source]) *
-            (link.partial() ? 2.0 : 1.0);
+        const double aq = h_.area[link.receiver], ap = h_.area[link.source];
+        // A receiver at the minimum area takes the mean of F over it whatever the source's
+        // parts: splitting the source would not lower the error of its one value.
+        const double spread = aq > settings_.min_area ? double(link.spread()) : 0.0;
+        const double estimate = (settings_.oracle == Oracle::bf
+                                     ? double(link.ff) * b_source
+                                     : spread * b_source + double(link.ff) * b_range[link.source]) *
+                                (link.partial() ? 2.0 : 1.0);
         if (estimate <= settings_.threshold)
             return;
-        const double aq = h_.area[link.receiver], ap = h_.area[link.source];
         if (std::max(aq, ap) <= settings_.min_area)
             return;
         decision[k] = aq >= ap ? split_receiver : split_source;

@@ -158,17 +158,14 @@ void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& c
 void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
                    ClusterValues& cv) {
     pull_lobes(tree, h, b, cv.exitance);
-    planar_gradients(tree, h, b, cv.gradient);
+    planar_gradients(tree, h, b, cv.gradient, &cv.departure);
     cv.peak.assign(tree.size(), 0.0f);
-    cv.trough.assign(tree.size(), std::numeric_limits<float>::infinity());
     for (std::size_t c = tree.size(); c-- > 0;) // children after parents
         for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
             const NodeRef child = tree.children[k];
             const bool cluster = is_cluster(child);
             const float value = cluster ? 0.0f : b[child].max_component();
             cv.peak[c] = std::max(cv.peak[c], cluster ? cv.peak[cluster_index(child)] : value);
-            cv.trough[c] =
-                std::min(cv.trough[c], cluster ? cv.trough[cluster_index(child)] : value);
         }
 }
 

@@ -17,7 +17,10 @@ struct ClusterValues {
     std::vector<Slope> gradient_emitted;  ///< of the emission over each face cluster (fixed)
     std::vector<Slope> gradient;          ///< of the radiosity over each face cluster
     std::vector<float> peak;              ///< largest radiosity of a root (largest channel)
-    std::vector<float> trough;            ///< smallest (of the same channel)
+    /// Of a face cluster: twice the largest departure of its roots' radiosity from its linear
+    /// fit (largest channel; 0 for volume clusters): what a source sending the fit's value
+    /// may be off by.
+    std::vector<float> departure;
     std::vector<Lobes> gathered_direct;   ///< irradiance lobes gathered by each cluster
     std::vector<Lobes> gathered_indirect;
     /// Per face cluster, the gradient (W/m² per metre, by world axis) that its exact links

@@ -221,7 +221,7 @@ void pull_lobes(const ClusterTree& tree, const Hierarchy& h, const std::vector<R
 // Moments about the origin, summed bottom-up in double (a cluster's small spread about its
 // centroid is their difference), then the 2 × 2 normal equations in the plane's frame.
 void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& value,
-                      std::vector<Slope>& out) {
+                      std::vector<Slope>& out, std::vector<float>* departure) {
     struct Moments {
         double a = 0;                ///< Σ A
         Vec3 ax;                     ///< Σ A x
@@ -241,6 +241,9 @@ void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::ve
     };
     std::vector<Moments> m(tree.size());
     out.assign(tree.size(), Slope{});
+    if (departure)
+        departure->assign(tree.size(), 0.0f);
+    std::vector<std::uint32_t> stack;
     for (std::size_t c = tree.size(); c-- > 0;) { // children after parents
         if (!tree.planar[c])
             continue;
@@ -296,6 +299,30 @@ void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::ve
         for (std::size_t axis = 0; axis < 3; ++axis)
             out[c][axis] =
                 Rgb(float(gradient[0][axis]), float(gradient[1][axis]), float(gradient[2][axis]));
+        if (!departure)
+            continue;
+        // The fit at every root below (a face cluster holds at most one item's roots).
+        double worst = 0;
+        stack.assign(1, std::uint32_t(c));
+        while (!stack.empty()) {
+            const std::uint32_t d = stack.back();
+            stack.pop_back();
+            for (std::uint32_t k = tree.child_begin[d]; k < tree.child_begin[d + 1]; ++k) {
+                const NodeRef child = tree.children[k];
+                if (is_cluster(child)) {
+                    stack.push_back(cluster_index(child));
+                    continue;
+                }
+                const Vec3 offset = h.centroid(child) - mean;
+                const double fitted[3] = {sum.av[0] / sum.a + dot(gradient[0], offset),
+                                          sum.av[1] / sum.a + dot(gradient[1], offset),
+                                          sum.av[2] / sum.a + dot(gradient[2], offset)};
+                const Rgb& v = value[child];
+                worst = std::max({worst, std::abs(v.r - fitted[0]), std::abs(v.g - fitted[1]),
+                                  std::abs(v.b - fitted[2])});
+            }
+        }
+        (*departure)[c] = float(2.0 * worst);
     }
 }
 

@@ -102,8 +102,9 @@ void pull_lobes(const ClusterTree& tree, const Hierarchy& h, const std::vector<R
 /// \brief Per face cluster, the gradient of the least-squares linear fit, over its plane, of
 ///        the values \p value[r] of its roots (at their centroids, weighted by area): the
 ///        first-order part of how its radiosity varies. Zero for volume clusters. \p out is
-///        resized.
+///        resized. \p departure (optional, resized): per face cluster, twice the largest
+///        departure of a root's value from the fit (largest channel), 0 for the others.
 void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& value,
-                      std::vector<Slope>& out);
+                      std::vector<Slope>& out, std::vector<float>* departure = nullptr);
 
 } // namespace penumbra::solver

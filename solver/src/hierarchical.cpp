@@ -182,10 +182,10 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
         const ClusterValues& cv = clusters.values;
         if (reuse)
             links.attach_clusters(clusters.tree, cv.exitance, cv.exitance_emitted, cv.peak,
-                                  cv.trough);
+                                  cv.departure);
         else
             links.link_clusters(clusters.tree, cv.exitance, cv.exitance_emitted, cv.peak,
-                                  cv.trough);
+                                cv.departure);
         ctx.info("hierarchical: {} clusters over {} elements", clusters.tree.size(),
                  h.root_count);
     }

@@ -51,8 +51,8 @@ constexpr double k_admissible = 0.5;
 /// light stays at 0.61 %.
 constexpr double k_reflected_slack = 5.0;
 /// The same for exact links (all their light is reflected), whose receivers take the plane
-/// of their form factor (hr_exact_links.cpp). On the 2x2 office floor of tessellation 5 at
-/// 5 / 7.5 / 10: 3.76 / 3.66 / 3.09 M links (with a partly occluded link's whole transfer
+/// of their form factor (hr_exact_links.cpp). When it was chosen, on the 2x2 office floor of
+/// tessellation 5 at 5 / 7.5 / 10: 3.76 / 3.66 / 3.09 M links (with a partly occluded link's whole transfer
 /// counted 4 times, k_shadow_weight); the lamp room's power error at ε = 3e-3 is 0.13 /
 /// 0.17 / 0.27 %, its sensors within 0.44 / 0.54 / 0.77 % of all pairs'.
 constexpr double k_exact_slack = 7.5;
@@ -616,12 +616,12 @@ void LinkSet::weigh_sources(const std::vector<Rgb>& b) {
 
 void LinkSet::attach_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
                               const std::vector<Lobes>& emitted, const std::vector<float>& peak,
-                              const std::vector<float>& trough) {
+                              const std::vector<float>& departure) {
     tree_ = &tree;
     exitance_ = &exitance;
     emitted_ = &emitted;
     peak_ = &peak;
-    trough_ = &trough;
+    departure_ = &departure;
     pull_lobes(tree, h_, std::vector<Rgb>(h_.root_count, Rgb(1.0f)), area_lobes_);
     dfs_roots_.clear();
     root_begin_.assign(tree.size(), 0);
@@ -683,8 +683,8 @@ void LinkSet::attach_clusters(const ClusterTree& tree, const std::vector<Lobes>&
 
 void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
                             const std::vector<Lobes>& emitted, const std::vector<float>& peak,
-                            const std::vector<float>& trough) {
-    attach_clusters(tree, exitance, emitted, peak, trough);
+                            const std::vector<float>& departure) {
+    attach_clusters(tree, exitance, emitted, peak, departure);
     links_.clear();
     cluster_links_.clear();
     cluster_links_.push_back(make_cluster_link(cluster_ref(0), cluster_ref(0)));

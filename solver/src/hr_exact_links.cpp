@@ -482,7 +482,7 @@ double LinkSet::exact_link_error(const ClusterLink& link, const std::vector<Rgb>
         const std::uint32_t c = cluster_index(p);
         mean = double(lobe_projection((*exitance_)[c], tree_->normal[c]).max_component()) /
                tree_->area[c];
-        range = std::max(0.0, double((*peak_)[c]) - double((*trough_)[c]));
+        range = double((*departure_)[c]);
     } else {
         mean = double(b[p].max_component());
         range = double(b_range[p]);

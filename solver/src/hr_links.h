@@ -137,11 +137,11 @@ public:
     /// direct light a link brings to a tighter bound than the reflected.
     void link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
                        const std::vector<Lobes>& emitted, const std::vector<float>& peak,
-                       const std::vector<float>& trough);
+                       const std::vector<float>& departure);
     /// Uses \p tree (as link_clusters) without making links.
     void attach_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
                          const std::vector<Lobes>& emitted, const std::vector<float>& peak,
-                         const std::vector<float>& trough);
+                         const std::vector<float>& departure);
     /// Takes saved links (a re-solve) and links the lights anew (their intensities may have
     /// changed).
     void restore(std::span<const Link> links, std::span<const ClusterLink> cluster_links);
@@ -328,7 +328,7 @@ private:
     void fit_slope(ClusterLink& link, const std::vector<WeightedPoint>& points,
                    const std::vector<double>& values, double f) const;
     /// The element oracle's estimate for an exact link, with the source's mean radiosity
-    /// and its range over the source (clusters: peak − trough of its roots).
+    /// and its range over the source (clusters: their departure from the linear fit).
     double exact_link_error(const ClusterLink& link, const std::vector<Rgb>& b,
                             const std::vector<float>& b_range) const;
 
@@ -345,7 +345,7 @@ private:
     const std::vector<Lobes>* exitance_ = nullptr;
     const std::vector<Lobes>* emitted_ = nullptr;
     const std::vector<float>* peak_ = nullptr;
-    const std::vector<float>* trough_ = nullptr;
+    const std::vector<float>* departure_ = nullptr; ///< ClusterValues::departure
     /// Per face cluster c, its boundary boundary_[boundary_begin_[c], boundary_begin_[c + 1]).
     std::vector<BoundaryEdge> boundary_;
     std::vector<std::uint32_t> boundary_begin_;

@@ -65,7 +65,7 @@ struct Pair {
         settings.min_area = 1e-3;
         links = std::make_unique<solver::LinkSet>(*h, twin, *embree, scene.point_lights, nullptr,
                                                   settings);
-        links->attach_clusters(tree, cv.exitance, cv.exitance_emitted, cv.peak, cv.trough);
+        links->attach_clusters(tree, cv.exitance, cv.exitance_emitted, cv.peak, cv.departure);
         a = face_cluster(cross(ua, va));
         b = face_cluster(cross(ub, vb));
     }

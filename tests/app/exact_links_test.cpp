@@ -132,6 +132,15 @@ TEST(ExactLinks, FormFactorMatchesAnalyticRectangles) {
         const double radius = 0.5 * std::hypot(c.width, 1.0);
         EXPECT_LT(length(pair.links->exact_slope(link)) * radius, 1e-3 * link.g);
     }
+    // A floor and the wall standing on its edge, whose point form factor is steepest where
+    // they meet.
+    Pair pair({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1}, {0, 1, 0});
+    const ClusterLink link = pair.links->exact_link(pair.a, pair.b);
+    ASSERT_TRUE(link.exact);
+    ASSERT_FALSE(link.unresolved());
+    std::printf("perpendicular 1 x 1 sharing an edge: F %.6f, analytic %.6f\n", double(link.g),
+                0.200044);
+    EXPECT_NEAR(link.g, 0.200044, 5e-3 * 0.200044);
 }
 
 // A wall beside a floor lights it by a gradient across the floor: the plane the floor

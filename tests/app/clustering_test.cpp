@@ -66,7 +66,7 @@ TEST(Clustering, ClosedRoomConservesPowerAndAgreesWithAllPairs) {
     const auto& pb = clustered.stats.power;
     EXPECT_LT(relative(pb.absorbed.g + pb.escaped.g, pb.emitted.g), 0.015);
     ASSERT_EQ(all.sensors.size(), clustered.sensors.size());
-    // Measured at most 0.65 % (1.16 % while exact links gave their receivers one value).
+    // Measured at most 0.57 % (1.16 % while exact links gave their receivers one value).
     for (std::size_t s = 0; s < all.sensors.size(); ++s)
         EXPECT_LT(
             relative(clustered.sensors[s].irradiance_total.g, all.sensors[s].irradiance_total.g),
@@ -87,8 +87,8 @@ TEST(Clustering, ErrorFallsWithEpsilon) {
         EXPECT_LT(error, previous) << "eps " << eps;
         previous = error;
     }
-    // Measured 0.19 % (0.10 % while exact links gave their receivers one value, with 75 %
-    // more links; 0.34 % before the kernels were scaled to the true cosines, with reflected
+    // Measured 0.03 % (0.10 % while exact links gave their receivers one value, with twice as
+    // many links; 0.34 % before the kernels were scaled to the true cosines, with reflected
     // light weighed at 1/3 rather than 1/5 in the cluster oracle).
     EXPECT_LT(previous, 0.0025);
 }

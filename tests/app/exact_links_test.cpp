@@ -172,8 +172,9 @@ TEST(ExactLinks, ReceiverPlaneFollowsThePointFormFactors) {
 }
 
 // A wall whose radiosity falls with height sends the floor beside it what a gather from its
-// roots weighted by their form factors gives (the floor sees most of the wall's bright
-// foot): within 1 %, and at least 3 times closer than the wall's mean radiosity.
+// roots weighted by their form factors gives (the floor, 0.5 m away, sees its bright foot at
+// grazing angles and most of it higher up): within 1 % (measured 0.48 %), and at least 3
+// times closer than the wall's mean radiosity (4.7 % off).
 TEST(ExactLinks, SourceSendsTheRadiosityItsReceiverSees) {
     Pair pair({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1.5, 0, 0}, {0, 0, 1}, {0, 1, 0});
     std::vector<Rgb> b(pair.h->size(), Rgb{});
@@ -200,6 +201,7 @@ TEST(ExactLinks, SourceSendsTheRadiosityItsReceiverSees) {
     }
     mean /= area;
     const double truth = num / den;
+    std::printf("sent %.5f, gather %.5f, mean %.5f\n", sent, truth, mean);
     EXPECT_NEAR(sent, truth, 0.01 * truth);
     EXPECT_LT(std::abs(sent - truth) * 3, std::abs(mean - truth));
 }

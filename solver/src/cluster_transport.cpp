@@ -1,7 +1,6 @@
 #include "cluster_transport.h"
 
 #include <algorithm>
-#include <limits>
 
 #include "core/parallel.h"
 
@@ -163,9 +162,8 @@ void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vecto
     for (std::size_t c = tree.size(); c-- > 0;) // children after parents
         for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
             const NodeRef child = tree.children[k];
-            const bool cluster = is_cluster(child);
-            const float value = cluster ? 0.0f : b[child].max_component();
-            cv.peak[c] = std::max(cv.peak[c], cluster ? cv.peak[cluster_index(child)] : value);
+            cv.peak[c] = std::max(cv.peak[c], is_cluster(child) ? cv.peak[cluster_index(child)]
+                                                                : b[child].max_component());
         }
 }
 

@@ -2,7 +2,6 @@
 // Light transport through cluster links (see cluster_tree.h): gathering over the links, the
 // push of clusters' irradiance lobes down to the roots, and the pull of exitance lobes up.
 
-#include <array>
 #include <vector>
 
 #include "cluster_tree.h"

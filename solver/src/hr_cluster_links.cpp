@@ -51,10 +51,10 @@ constexpr double k_admissible = 0.5;
 /// light stays at 0.61 %.
 constexpr double k_reflected_slack = 5.0;
 /// The same for exact links (all their light is reflected), whose receivers take the plane
-/// of their form factor (hr_exact_links.cpp). When it was chosen, on the 2x2 office floor of
-/// tessellation 5 at 5 / 7.5 / 10: 3.76 / 3.66 / 3.09 M links (with a partly occluded link's whole transfer
-/// counted 4 times, k_shadow_weight); the lamp room's power error at ε = 3e-3 is 0.13 /
-/// 0.17 / 0.27 %, its sensors within 0.44 / 0.54 / 0.77 % of all pairs'.
+/// of their form factor (hr_exact_links.cpp). When it was chosen (with a partly occluded
+/// link's whole transfer counted 4 times as its shadow error), on the 2x2 office floor of
+/// tessellation 5 at 5 / 7.5 / 10: 3.76 / 3.66 / 3.09 M links; the lamp room's power error at
+/// ε = 3e-3 was 0.13 / 0.17 / 0.27 %, its sensors within 0.44 / 0.54 / 0.77 % of all pairs'.
 constexpr double k_exact_slack = 7.5;
 
 /// Whether a pair of ends whose centres are \p r apart and whose bounding radii sum to

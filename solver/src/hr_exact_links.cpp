@@ -31,6 +31,11 @@ namespace penumbra::solver {
 
 namespace {
 
+/// The point of triangle \p t at barycentrics (1 − b1 − b2, b1, b2).
+Vec3 at_barycentrics(const std::array<Vec3, 3>& t, const std::array<double, 2>& b) {
+    return t[0] * (1.0 - b[0] - b[1]) + t[1] * b[0] + t[2] * b[1];
+}
+
 /// Quadrature points on a receiver cluster: up to this many (4 for a receiver small against
 /// the distance).
 constexpr int k_exact_points = 128;
@@ -40,8 +45,8 @@ constexpr std::uint32_t k_clip_roots = 64;
 /// An exact link with a receiver cluster closer to its source than this times its radius
 /// takes the finest points.
 constexpr double k_near_gap = 0.5;
-/// A source whose direction from the receiver's centroid is within this sine of its normal
-/// gives no slope (exact_slope_direction).
+/// A receiver whose direction from a cluster source's centroid is within this sine of the
+/// source's normal gives no offset (planar_direction, seen_offset).
 constexpr double k_min_slope_sine = 0.05;
 /// A partly occluded exact link to a cluster receiver counts this many times F · B v (1 − v)
 /// as error (exact_link_error; 4 times the mean error of its visibility over a sharp shadow).
@@ -226,10 +231,8 @@ void LinkSet::receiver_points(NodeRef q, int count, std::vector<WeightedPoint>& 
         std::size_t m = 0;
         quadrature_barycentrics(count <= 4 ? 1 : (count <= 16 ? 2 : 3), bary.data(), &m);
         const auto& t = h_.triangle[q];
-        for (std::size_t k = 0; k < m; ++k) {
-            const double b1 = bary[k][0], b2 = bary[k][1];
-            out.push_back({t[0] * (1.0 - b1 - b2) + t[1] * b1 + t[2] * b2, 1.0 / double(m)});
-        }
+        for (std::size_t k = 0; k < m; ++k)
+            out.push_back({at_barycentrics(t, bary[k]), 1.0 / double(m)});
         return;
     }
     const std::uint32_t c = cluster_index(q), begin = root_begin_[c], end = root_end_[c];
@@ -241,11 +244,9 @@ void LinkSet::receiver_points(NodeRef q, int count, std::vector<WeightedPoint>& 
         quadrature_barycentrics(four ? 1 : 0, bary.data(), &m);
         for (std::uint32_t k = begin; k < end; ++k) {
             const auto& t = h_.triangle[dfs_roots_[k]];
-            for (std::size_t i = 0; i < m; ++i) {
-                const double b1 = bary[i][0], b2 = bary[i][1];
-                out.push_back({t[0] * (1.0 - b1 - b2) + t[1] * b1 + t[2] * b2,
-                               h_.area[dfs_roots_[k]] / range / double(m)});
-            }
+            for (std::size_t i = 0; i < m; ++i)
+                out.push_back(
+                    {at_barycentrics(t, bary[i]), h_.area[dfs_roots_[k]] / range / double(m)});
         }
         return;
     }
@@ -294,7 +295,7 @@ Vec3 LinkSet::planar_direction(NodeRef from, NodeRef toward) const {
     const Vec3& n = tree_->normal[c];
     const Vec3 along = delta - n * dot(n, delta);
     const double len = length(along);
-    // A source (nearly) straight above: F varies about the receiver's centre, not along a
+    // An end (nearly) straight above: what it sees of `from` is centred, not off along a
     // direction.
     if (!(len > k_min_slope_sine * length(delta)))
         return {};

@@ -14,7 +14,7 @@ struct SourceTerm {
 
 SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterValues& cv,
                        const std::vector<Rgb>& b, const ClusterLink& link, bool increment) {
-    const float scale = link.g * link.v;
+    const float scale = link.g * link.visible();
     if (link.exact) { // F · v times the radiosity the source sends it
         const bool element = !is_cluster(link.source);
         return {element && increment

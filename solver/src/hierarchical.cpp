@@ -19,6 +19,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
+#include <optional>
 
 #include "cluster_transport.h"
 #include "core/error.h"
@@ -111,40 +113,58 @@ namespace {
 // exactly, and the direct irradiance that cluster links bring it (emitters seen as part of a
 // cluster), which they take as the leaves' mean.
 struct LeafDirect {
-    std::vector<std::vector<std::uint32_t>> near; ///< per leaf element: emitting roots
-    std::vector<Rgb> far;                         ///< per leaf element, W/m²
+    EmitterLists near;    ///< per leaf element: emitting roots
+    std::vector<Rgb> far; ///< per leaf element, W/m²
 };
 
-LeafDirect leaf_direct(const Hierarchy& h, const LinkSet& links, const Clusters& clusters,
+// Overwrites \p clusters' gathered and pushed values (the solve is done with them): a copy
+// took 0.3 GB on the 1M floor, at the solve's peak.
+LeafDirect leaf_direct(const Hierarchy& h, const LinkSet& links, Clusters& clusters,
                        const std::vector<Rgb>& b, const std::vector<std::uint32_t>& leaf_node) {
     const std::vector<std::uint32_t> root_of = h.root_of_nodes();
     std::vector<Rgb> cluster_direct(h.size()), unused(h.size());
     std::vector<Rgb> root_direct;
-    if (clusters.enabled) { // the direct part alone, on a copy of the cluster values
-        ClusterValues cv = clusters.values;
+    if (clusters.enabled) { // the direct part alone
+        ClusterValues& cv = clusters.values;
         gather_cluster_links(h, clusters.tree, links, b, cv, cluster_direct, unused);
         push_clusters(clusters.tree, h, cv);
         root_direct = std::move(cv.root_direct);
     }
+    unused = {};
     LeafDirect out;
-    out.near.resize(leaf_node.size());
     out.far.resize(leaf_node.size());
     const auto& offsets = links.receiver_offsets();
-    parallel_for_index(leaf_node.size(), 256, [&](std::size_t e) {
-        const std::uint32_t leaf = leaf_node[e];
-        Rgb far = clusters.enabled ? root_direct[root_of[leaf]] : Rgb{};
-        std::vector<std::uint32_t>& near = out.near[e];
-        for (std::int32_t a = std::int32_t(leaf); a >= 0; a = h.parent[std::size_t(a)]) {
-            far += cluster_direct[std::size_t(a)];
+    // A leaf's emitting roots, sorted and unique, into \p near.
+    auto emitters_of = [&](std::uint32_t leaf, std::vector<std::uint32_t>& near) {
+        near.clear();
+        for (std::int32_t a = std::int32_t(leaf); a >= 0; a = h.parent[std::size_t(a)])
             for (std::uint32_t k = offsets[std::size_t(a)]; k < offsets[std::size_t(a) + 1]; ++k) {
                 const std::uint32_t source = links.links()[k].source;
                 if (!h.emission[source].is_black())
                     near.push_back(root_of[source]);
             }
-        }
         std::sort(near.begin(), near.end());
         near.erase(std::unique(near.begin(), near.end()), near.end());
+    };
+    // Counted, then written (CSR: a vector per leaf took 4 times the memory).
+    std::vector<std::uint32_t>& first = out.near.first;
+    first.assign(leaf_node.size() + 1, 0);
+    parallel_for_index(leaf_node.size(), 256, [&](std::size_t e) {
+        thread_local std::vector<std::uint32_t> near;
+        emitters_of(leaf_node[e], near);
+        first[e + 1] = std::uint32_t(near.size());
+        Rgb far = clusters.enabled ? root_direct[root_of[leaf_node[e]]] : Rgb{};
+        for (std::int32_t a = std::int32_t(leaf_node[e]); a >= 0; a = h.parent[std::size_t(a)])
+            far += cluster_direct[std::size_t(a)];
         out.far[e] = far;
+    });
+    for (std::size_t e = 0; e < leaf_node.size(); ++e)
+        first[e + 1] += first[e];
+    out.near.roots.resize(first.back());
+    parallel_for_index(leaf_node.size(), 256, [&](std::size_t e) {
+        thread_local std::vector<std::uint32_t> near;
+        emitters_of(leaf_node[e], near);
+        std::copy(near.begin(), near.end(), out.near.roots.begin() + first[e]);
     });
     return out;
 }
@@ -265,44 +285,68 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
             break;
     }
     auto t0 = Clock::now();
-    LeafMesh leaf = build_leaf_mesh(mesh, h, twin);
+    release_sweep_values(v);
+    // Where no root was subdivided the leaf mesh is the input mesh: no copy, and the caller
+    // traces on the BVH it has.
+    const bool subdivided = h.size() > h.root_count;
+    LeafMesh leaf;
+    if (subdivided) {
+        leaf = build_leaf_mesh(mesh, h, twin);
+    } else {
+        leaf.element_node.resize(h.root_count);
+        std::iota(leaf.element_node.begin(), leaf.element_node.end(), 0u);
+    }
+    const RadiosityMesh& out_mesh = subdivided ? leaf.mesh : mesh;
     ElementResult er;
+    for (std::vector<Rgb>* a : {&er.radiosity, &er.h_direct, &er.h_indirect})
+        a->reserve(leaf.element_node.size());
     for (std::uint32_t node : leaf.element_node) {
         er.radiosity.push_back(v.b[node]);
         er.h_direct.push_back(v.h_direct[node]);
         er.h_indirect.push_back(v.h_indirect[node]);
     }
-    ElementGeometry geo(leaf.mesh);
+    const ElementGeometry geo(out_mesh);
     RowSettings row_settings = rs.rows;
     SolveResult result;
     // Vertices gather direct light from the emitting roots: the same surfaces as the emitting
-    // leaves, in fewer triangles.
-    const ElementGeometry root_geo(mesh);
+    // leaves, in fewer triangles (the same ones where no root was subdivided).
+    std::optional<ElementGeometry> own_root_geo;
+    if (subdivided)
+        own_root_geo.emplace(mesh);
+    const ElementGeometry& root_geo = own_root_geo ? *own_root_geo : geo;
     std::vector<Rgb> root_emission(mesh.element_count());
     for (std::size_t e = 0; e < root_emission.size(); ++e)
         root_emission[e] = mesh.patch_of(std::uint32_t(e)).emission;
     const LeafDirect sources = leaf_direct(h, links, clusters, v.b, leaf.element_node);
+    leaf.element_node = {};
+    // The refinement's and the clusters' tables are done with: the vertices, the balance and
+    // the caller's output stage peaked the 1M floor's memory on top of them.
+    const bool clustered = clusters.enabled;
+    clusters = Clusters{};
+    links.release_refinement_tables();
     const DirectEmitters emitters{root_geo, direct_sources(scene, root_emission), &sources.near,
                                   &sources.far};
-    result.solution =
-        make_solution(scene, leaf.mesh, geo, er, visibility, row_settings, ctx, &emitters);
+    result.solution = make_solution(scene, out_mesh, geo, std::move(er), visibility,
+                                    row_settings, ctx, &emitters);
     ctx.debug("hierarchical: leaf mesh, vertices and sensors {:.2f} s", seconds_since(t0));
     t0 = Clock::now();
     if (stats) {
         stats->shots = log.total;
         stats->links = links.link_count();
-        stats->power = hierarchical_balance(scene, leaf.mesh, geo, result.solution, visibility,
+        stats->power = hierarchical_balance(scene, out_mesh, geo, result.solution, visibility,
                                             row_settings, stats->residual_history.empty()
                                                               ? 0.0
                                                               : stats->residual_history.back(),
                                             links.sun_power());
         ctx.debug("hierarchical: power balance {:.2f} s", seconds_since(t0));
     }
+    // The last pass is the solution itself where it lives on the roots.
     if (observer && observer->on_pass)
-        observer->on_pass(root_snapshot(mesh, h, v), log.total, 0.0, true);
+        observer->on_pass(subdivided ? root_snapshot(mesh, h, v) : result.solution, log.total,
+                          0.0, true);
     auto state = std::make_shared<HierarchicalState>();
     state->mesh_hash = mesh_geometry_hash(mesh);
-    state->clustered = clusters.enabled;
+    state->clustered = clustered;
     state->twin = twin;
     // Moved, not copied: a big scene's links are most of the solve's memory.
     state->links = links.take_links();
@@ -311,7 +355,8 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     state->weights = std::move(v.weights);
     state->hierarchy = std::move(h);
     result.state = std::move(state);
-    result.refined_mesh = std::move(leaf.mesh);
+    if (subdivided)
+        result.refined_mesh = std::move(leaf.mesh);
     return result;
 }
 

@@ -88,7 +88,7 @@ float round_up(double x) {
 double visibility_uncertainty(const ClusterLink& link) {
     if (link.partial)
         return 1.0;
-    if (link.v > 0 || link.rays == 0)
+    if (link.visible() > 0 || link.rays == 0)
         return 0.0;
     return 1.0 / double(link.rays);
 }
@@ -223,7 +223,7 @@ ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
     if (near || !cast_cluster_rays(link, k_cluster_rays)) {
         const double closest = 0.25 * (rq + rp), reach = std::max(r, closest);
         link.g = float(1.0 / (k_pi * reach * reach));
-        link.v = 1.0f;
+        link.set_visible(1.0);
     }
     return link;
 }
@@ -289,7 +289,7 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
         visibility_.occluded(segments, blocked);
     }
     const double before = double(link.rays);
-    double open = double(link.v) * before;
+    double open = std::round(double(link.visible()) * before); // a count of rays
     double g_open = open > 0 ? double(link.g) * open : 0.0;
     double g_all = open > 0 ? 0.0 : double(link.g) * before; // only read while none is open
     const bool first_open = open == 0; // the kernel is calibrated over the first open rays
@@ -309,12 +309,13 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     if (open == 0 && !hits.empty()) {
         if (certified_blocked(link.receiver, link.source, segments, hits)) {
             link.rays = std::uint16_t(total);
-            link.g = link.v = 0.0f; // carries nothing: the refinement drops it
+            link.g = 0.0f;
+            link.v_bits = 0; // carries nothing: the refinement drops it
             return true;
         }
     }
     link.rays = std::uint16_t(total);
-    link.v = float(open / total);
+    link.set_visible(open / total);
     link.g = float(open > 0 ? g_open / open : g_all / total);
     link.partial = open > 0 && open < total;
     return true;
@@ -441,7 +442,7 @@ double LinkSet::cluster_link_error(const ClusterLink& link, const std::vector<Rg
         return std::numeric_limits<double>::infinity();
     const double size_factor = 2.0 * g.radii / g.r;
     return weighed_irradiance(link, b, g) *
-           (double(link.v) * size_factor + visibility_uncertainty(link));
+           (double(link.visible()) * size_factor + visibility_uncertainty(link));
 }
 
 double LinkSet::weighed_irradiance(const ClusterLink& link, const std::vector<Rgb>& b,
@@ -457,7 +458,7 @@ double LinkSet::weighed_irradiance(const ClusterLink& link, const std::vector<Rg
     const double point = 1.0 / (k_pi * std::max(g.r * g.r, r_floor * r_floor));
     // A link with open rays brings its own kernel g (calibrated to the true cosines, which may
     // exceed the centres' point kernel): the oracle weighs the larger.
-    return weighed * (link.v > 0 ? std::max(point, double(link.g)) : point);
+    return weighed * (link.visible() > 0 ? std::max(point, double(link.g)) : point);
 }
 
 double LinkSet::intensity_toward(const ClusterLink& link, const std::vector<Lobes>& lobes,
@@ -484,7 +485,7 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
     std::vector<std::uint8_t> changed(cluster_links_.size(), 0);
     parallel_for_index(cluster_links_.size(), 256, [&](std::size_t k) {
         ClusterLink& l = cluster_links_[k];
-        if (l.self || l.exact || l.v > 0 || l.rays == 0 || l.rays >= k_max_cluster_rays)
+        if (l.self || l.exact || l.visible() > 0 || l.rays == 0 || l.rays >= k_max_cluster_rays)
             return;
         const double open = weighed_irradiance(l, b, pair_geometry(l));
         if (open / double(l.rays) <= threshold / k_resample_margin)
@@ -679,6 +680,26 @@ void LinkSet::attach_clusters(const ClusterTree& tree, const std::vector<Lobes>&
                 if (std::abs(n[a]) > k_lobe_component)
                     merge(lobe_bounds_[c][std::size_t(lobe_index(int(a), n[a]))], box);
         }
+}
+
+void LinkSet::release_refinement_tables() {
+    tree_ = nullptr;
+    exitance_ = emitted_ = nullptr;
+    peak_ = departure_ = nullptr;
+    boundary_ = {};
+    boundary_begin_ = {};
+    exact_source_ = {};
+    area_lobes_ = {};
+    dfs_roots_ = {};
+    root_begin_ = {};
+    root_end_ = {};
+    dfs_area_ = {};
+    dfs_exitance_ = {};
+    dfs_plane_ = {};
+    occluders_ = OccluderPlanes();
+    lobe_bounds_ = {};
+    kept_ = {};
+    cluster_kept_ = {};
 }
 
 void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,

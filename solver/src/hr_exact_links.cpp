@@ -429,7 +429,7 @@ ClusterLink LinkSet::make_exact_link(NodeRef q, NodeRef p) const {
     // lamp's back) counted at the ceiling's mean radiosity, and the lamp room lost 0.26 % of
     // its power.
     Pcg32 rng = Pcg32::for_stream(RngPurpose::exact_visibility, q, p, 0, settings_.rows.seed);
-    const int rays = std::max(settings_.rows.visibility_rays, 4);
+    const int rays = std::clamp(settings_.rows.visibility_rays, 4, k_max_link_rays);
     thread_local std::vector<Segment> segments;
     thread_local std::vector<double> kernel;
     thread_local std::vector<std::int32_t> hits;
@@ -447,7 +447,7 @@ ClusterLink LinkSet::make_exact_link(NodeRef q, NodeRef p) const {
         kernel.push_back(cq * cp / (d2 * d2));
     }
     if (segments.empty()) { // the transfer is where no ray was drawn: unknown
-        link.v = 1.0f;
+        link.set_visible(1.0);
         link.partial = 1;
         return link;
     }
@@ -464,10 +464,11 @@ ClusterLink LinkSet::make_exact_link(NodeRef q, NodeRef p) const {
     }
     link.rays = std::uint16_t(segments.size());
     if (open_rays == 0 && certified_blocked(q, p, segments, hits)) {
-        link.g = link.v = 0.0f; // carries nothing: the refinement drops it
+        link.g = 0.0f;
+        link.v_bits = 0; // carries nothing: the refinement drops it
         return link;
     }
-    link.v = float(all > 0 ? open / all : 0.0);
+    link.set_visible(all > 0 ? open / all : 0.0);
     link.partial = open_rays > 0 && open_rays < int(segments.size());
     return link;
 }
@@ -487,14 +488,15 @@ double LinkSet::exact_link_error(const ClusterLink& link, const std::vector<Rgb>
         mean = double(b[p].max_component());
         range = double(b_range[p]);
     }
-    const double f = double(link.g), visible = double(link.v);
+    const double f = double(link.g), visible = double(link.visible());
     // A receiver that cannot be split takes the mean of F over it whatever its source's
     // parts: splitting the source would not lower the error of its one value.
     const double spread = splittable(link.receiver) ? double(link.spread()) : 0.0;
     const double estimate =
         settings_.oracle == Oracle::bf ? f * visible * mean : spread * mean + f * visible * range;
     // All rays blocked: n of them cannot tell 0 from about 1/n.
-    const double uncertain = link.v > 0 || link.rays == 0 ? 0.0 : f * mean / double(link.rays);
+    const double uncertain =
+        link.visible() > 0 || link.rays == 0 ? 0.0 : f * mean / double(link.rays);
     // A partly occluded link gives its cluster receiver its mean visibility v everywhere,
     // across the shadow: where that is sharp, v is off by 2 v (1 − v) on average.
     const double shadow = link.partial && is_cluster(link.receiver)

@@ -381,6 +381,9 @@ bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range,
     }
     if (changed) // the links are kept sorted and indexed: only changes need it again
         sort_and_index();
+    // Read within one refine() only: a byte per link (170 M of them on the 1M floor).
+    kept_ = {};
+    cluster_kept_ = {};
     return changed;
 }
 

@@ -3,6 +3,7 @@
 // source node to a receiver node with a form factor and a visibility class, refined by a
 // power oracle.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -70,7 +71,6 @@ struct ClusterLink {
     /// Lobe links: mean 1 / (π d²) over the open rays between the two ends (all if none),
     /// scaled to their true cosines (cast_cluster_rays). Exact links: F without occlusion.
     float g = 0;
-    float v = 0;   ///< visible fraction from the link's rays
     /// Lobe links: unit direction from the receiver's centre to the source's centre. Exact
     /// links: x the spread of the point form factors over the receiver (of a cluster
     /// receiver: twice their largest departure from the plane of z and slope_t), y (of a cluster
@@ -80,19 +80,29 @@ struct ClusterLink {
     /// z (of a cluster receiver) the slope of F per metre along the s axis of its plane's
     /// Frame (LinkSet::exact_slope).
     Vec3f d;
-    float slope_t = 0;            ///< exact links: the same along the t axis
-    std::uint8_t partial : 1 = 0; ///< the rays disagreed
-    std::uint8_t self : 1 = 0;    ///< a cluster's link to itself: carries nothing until refined
-    std::uint8_t exact : 1 = 0;   ///< an exact link between planar ends
+    float slope_t = 0; ///< exact links: the same along the t axis
+    /// Visible fraction from the link's rays, in 1/65535 (a link with any light open keeps
+    /// at least 1): 2 bytes rather than a float's 4 keep the link at 32 bytes.
+    std::uint16_t v_bits = 0;
     /// Visibility rays cast (0 where no surface of one end faces the other): 4, more for a
-    /// link all of whose rays were blocked while the oracle was unsure of it.
-    std::uint16_t rays = 0;
+    /// link all of whose rays were blocked while the oracle was unsure of it (at most
+    /// k_max_link_rays).
+    std::uint16_t rays : 13 = 0;
+    std::uint16_t partial : 1 = 0; ///< the rays disagreed
+    std::uint16_t self : 1 = 0;    ///< a cluster's link to itself: carries nothing until refined
+    std::uint16_t exact : 1 = 0;   ///< an exact link between planar ends
 
+    float visible() const { return float(v_bits) * (1.0f / 65535.0f); }
+    void set_visible(double v) {
+        v_bits = v > 0 ? std::uint16_t(std::clamp(std::lround(v * 65535.0), 1L, 65535L)) : 0;
+    }
     float spread() const { return d.x; } ///< of an exact link
     /// An exact link whose form factor its points do not resolve: the oracle splits it.
     bool unresolved() const { return exact && d.x == k_unresolved; }
 };
-static_assert(sizeof(ClusterLink) == 36);
+static_assert(sizeof(ClusterLink) == 32);
+/// Most rays a cluster link may record (ClusterLink::rays).
+constexpr int k_max_link_rays = (1 << 13) - 1;
 
 /// What the refinement oracle weighs against ε: F·B (Hanrahan et al.'s BF), or ΔF·B + F·ΔB:
 /// the variation of the form factor over the receiver times the source radiosity (the error
@@ -175,6 +185,10 @@ public:
     /// The exact link from planar end \p q to planar end \p p (one a face cluster) as the
     /// refinement would make it (link_clusters or attach_clusters first): for tests.
     ClusterLink exact_link(NodeRef q, NodeRef p) const { return make_exact_link(q, p); }
+    /// Frees the tables refinement and the cluster links' gather read (the cluster tree's
+    /// roots, boundaries, bounds and occluder planes), keeping the links: after the last
+    /// gather, before the output stage.
+    void release_refinement_tables();
     /// Moves the element links (or the cluster links) out, leaving the link set without them.
     MappedArray<Link> take_links() { return std::exchange(links_, {}); }
     MappedArray<ClusterLink> take_cluster_links() { return std::exchange(cluster_links_, {}); }

@@ -20,7 +20,8 @@ namespace {
 
 // Version 4: cluster links index the face-cluster tree, and their kernels are calibrated.
 // Version 5: element links are 16 bytes (the occlusion flag is the spread's sign bit).
-constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '7'};
+// Version 8: cluster links are 32 bytes (their visible fraction in 16 bits).
+constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '8'};
 
 class Writer {
 public:

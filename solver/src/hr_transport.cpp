@@ -305,4 +305,13 @@ Solved solve_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clus
     return s;
 }
 
+void release_sweep_values(NodeValues& v) {
+    for (std::vector<Rgb>* a : {&v.gathered_direct, &v.gathered_indirect, &v.link_direct,
+                                &v.link_indirect, &v.extra_direct, &v.extra_indirect, &v.b_emit})
+        *a = {};
+    v.b_lo = {};
+    v.b_hi = {};
+    v.b_range = {};
+}
+
 } // namespace penumbra::solver

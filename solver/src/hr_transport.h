@@ -41,6 +41,9 @@ struct NodeValues {
     LeafWeights weights;
 };
 
+/// Frees what only the sweeps use, keeping b, h_direct, h_indirect and the weights.
+void release_sweep_values(NodeValues& v);
+
 /// The cluster tree and its values, when clustering.
 struct Clusters {
     ClusterTree tree;

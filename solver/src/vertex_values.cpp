@@ -97,7 +97,7 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
             if (split) {
                 std::vector<std::uint32_t> near;
                 for (std::uint32_t k = first[v]; k < first[v + 1]; ++k) {
-                    const auto& mine = (*emitters->near)[adjacent[k]];
+                    const auto mine = emitters->near->of(adjacent[k]);
                     near.insert(near.end(), mine.begin(), mine.end());
                 }
                 std::sort(near.begin(), near.end());

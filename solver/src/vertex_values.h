@@ -1,5 +1,7 @@
 #pragma once
 
+#include <span>
+
 #include "core/context.h"
 #include "core/mesh.h"
 #include "core/scene.h"
@@ -34,10 +36,20 @@ Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& resul
 /// increasing order), and adds the area-weighted mean of their far direct irradiance: the
 /// light of emitters that reach the element through cluster links (a vertex would otherwise
 /// gather from every emitter in the scene, which grows with the scene's size squared).
+/// Per element, a sorted list of emitting elements (CSR: element e's are
+/// roots[first[e], first[e + 1])).
+struct EmitterLists {
+    std::vector<std::uint32_t> first{0};
+    std::vector<std::uint32_t> roots;
+    std::span<const std::uint32_t> of(std::size_t e) const {
+        return std::span<const std::uint32_t>(roots).subspan(first[e], first[e + 1] - first[e]);
+    }
+};
+
 struct DirectEmitters {
     const ElementGeometry& geo;
     GatherSources sources;
-    const std::vector<std::vector<std::uint32_t>>* near = nullptr;
+    const EmitterLists* near = nullptr;
     const std::vector<Rgb>* far = nullptr;
 };
 

@@ -128,7 +128,7 @@ TEST(ExactLinks, FormFactorMatchesAnalyticRectangles) {
         std::printf("%g x 1 at %g: F %.6f, analytic %.6f\n", c.width, c.gap, double(link.g),
                     c.expected);
         EXPECT_NEAR(link.g, c.expected, 5e-3 * c.expected) << c.width << " x 1 at " << c.gap;
-        EXPECT_FLOAT_EQ(link.v, 1.0f);
+        EXPECT_FLOAT_EQ(link.visible(), 1.0f);
         const double radius = 0.5 * std::hypot(c.width, 1.0);
         EXPECT_LT(length(pair.links->exact_slope(link)) * radius, 1e-3 * link.g);
     }

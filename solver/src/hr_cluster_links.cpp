@@ -127,8 +127,10 @@ double LinkSet::node_radius(NodeRef n) const {
     return r;
 }
 
-bool LinkSet::splittable(NodeRef n) const {
-    return is_cluster(n) || !h_.is_leaf(n) || h_.area[n] > settings_.min_area;
+bool LinkSet::splittable(NodeRef n, bool exact) const {
+    if (is_cluster(n))
+        return !exact || tree_->area[cluster_index(n)] > settings_.min_area;
+    return !h_.is_leaf(n) || h_.area[n] > settings_.min_area;
 }
 
 Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec3& normal,
@@ -523,7 +525,7 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         // the cluster end of a cluster–element link (element pairs get the exact form factor
         // and the element oracle), else the larger end.
         const NodeRef q = l.receiver, p = l.source;
-        const bool sq = splittable(q), sp = splittable(p);
+        const bool sq = splittable(q, l.exact), sp = splittable(p, l.exact);
         const bool receiver_first = l.exact ? node_area(q) >= node_area(p)
                                     : is_cluster(q) != is_cluster(p)
                                         ? is_cluster(q)

@@ -491,7 +491,7 @@ double LinkSet::exact_link_error(const ClusterLink& link, const std::vector<Rgb>
     const double f = double(link.g), visible = double(link.visible());
     // A receiver that cannot be split takes the mean of F over it whatever its source's
     // parts: splitting the source would not lower the error of its one value.
-    const double spread = splittable(link.receiver) ? double(link.spread()) : 0.0;
+    const double spread = splittable(link.receiver, true) ? double(link.spread()) : 0.0;
     const double estimate =
         settings_.oracle == Oracle::bf ? f * visible * mean : spread * mean + f * visible * range;
     // All rays blocked: n of them cannot tell 0 from about 1/n.

@@ -278,7 +278,10 @@ private:
     Vec3 node_centre(NodeRef n) const;
     double node_radius(NodeRef n) const;
     double node_area(NodeRef n) const;
-    bool splittable(NodeRef n) const;
+    /// Whether refinement may split node \p n: an element above the minimum area or with
+    /// children; a cluster, except for an \p exact link a face cluster no larger than the
+    /// minimum area (its reflected light is not resolved below it, as an element's).
+    bool splittable(NodeRef n, bool exact = false) const;
     /// Some surface of cluster \p c may face some point of \p other (by its axis lobes and
     /// the bounding boxes: conservative).
     bool faces_box(std::uint32_t c, NodeRef other) const;

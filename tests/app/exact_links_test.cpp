@@ -48,7 +48,7 @@ struct Pair {
     NodeRef a = 0, b = 0; ///< the face clusters of the first and the second rectangle
 
     Pair(const Vec3& oa, const Vec3& ua, const Vec3& va, const Vec3& ob, const Vec3& ub,
-         const Vec3& vb) {
+         const Vec3& vb, double min_area = 1e-3) {
         const auto grey = test::add_material(scene, "grey", Rgb(0.5f), Rgb{}, false);
         add_tiled_rect(scene, grey, oa, ua, va, 4);
         add_tiled_rect(scene, grey, ob, ub, vb, 4);
@@ -62,7 +62,7 @@ struct Pair {
         solver::RefineSettings settings;
         settings.rows.visibility_rays = 16;
         settings.offset = 1e-5 * mesh.scene_diagonal;
-        settings.min_area = 1e-3;
+        settings.min_area = min_area;
         links = std::make_unique<solver::LinkSet>(*h, twin, *embree, scene.point_lights, nullptr,
                                                   settings);
         links->attach_clusters(tree, cv.exitance, cv.exitance_emitted, cv.peak, cv.departure);
@@ -236,6 +236,41 @@ TEST(ExactLinks, GradientsAndSlopedPush) {
         scale += std::abs(expected) * pair.h->area[r];
     }
     EXPECT_LT(std::abs(power), 1e-5 * scale);
+}
+
+// Reflected light is not resolved below the minimum area: a floor and the wall beside it,
+// both bright and both 1 m² (32 roots each), keep their one exact link each way however small
+// the threshold when the minimum area is 2 m², and are refined down to links to each of
+// their roots (1/32 m²) when it is 0.05 m².
+TEST(ExactLinks, FaceClustersWithinTheMinimumAreaAreNotSplit) {
+    for (const double min_area : {2.0, 0.05}) {
+        Pair pair({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1.5, 0, 0}, {0, 0, 1}, {0, 1, 0}, min_area);
+        std::vector<Rgb> b(pair.h->size(), Rgb(1.0f));
+        std::vector<float> b_range(pair.h->size(), 0.0f);
+        solver::init_cluster_values(pair.tree, *pair.h, b, pair.cv);
+        pair.links->link_clusters(pair.tree, pair.cv.exitance, pair.cv.exitance_emitted,
+                                  pair.cv.peak, pair.cv.departure);
+        pair.links->set_threshold(1e-9);
+        pair.links->set_cluster_threshold(1e-9);
+        pair.links->refine(b, b_range);
+        std::size_t between_clusters = 0, to_roots = 0;
+        for (const ClusterLink& l : pair.links->cluster_links()) {
+            between_clusters += l.exact && ((l.receiver == pair.a && l.source == pair.b) ||
+                                            (l.receiver == pair.b && l.source == pair.a));
+            to_roots += !solver::is_cluster(l.receiver);
+        }
+        to_roots += pair.links->links().size();
+        std::printf("min area %g m²: %zu links, %zu of them to roots\n", min_area,
+                    pair.links->link_count(), to_roots);
+        if (min_area > 1.0) {
+            EXPECT_EQ(between_clusters, 2u);
+            EXPECT_EQ(pair.links->link_count(), 2u);
+        } else {
+            EXPECT_EQ(between_clusters, 0u);
+            EXPECT_EQ(to_roots, pair.links->link_count()); // a root's mean F is all it takes
+            EXPECT_GE(to_roots, 64u);
+        }
+    }
 }
 
 } // namespace

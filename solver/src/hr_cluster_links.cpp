@@ -12,9 +12,10 @@
 // point approximation (2 × the bounding radii over the distance) where it is visible, plus the
 // uncertainty of its visibility: all of it for partly occluded links, 1/n for links all n of
 // whose rays were blocked (n blocked rays cannot tell 0 from about 1/n). The irradiance counts
-// what the source emits in full and what it reflects divided by k_reflected_slack. Such a link is first given more rays (up to
-// 256), which is far cheaper than splitting it: the parts of a wall-separated pair are
-// occluded again, and splitting the receiver does not lower the irradiance in question.
+// what the source emits in full and what it reflects divided by k_reflected_slack. Such a
+// link is first given more rays (up to 64), which is far cheaper than splitting it: the parts
+// of a wall-separated pair are occluded again, and splitting the receiver does not lower the
+// irradiance in question.
 //
 // Before that, a link whose first rays were all blocked is offered to the planes they hit
 // (occluders.h): a plane with the link's ends on its two sides whose surfaces cover the
@@ -64,7 +65,11 @@ constexpr int k_facing_tries = 8;
 /// Largest factor the true cosines may scale a cluster link's kernel by (cast_cluster_rays).
 constexpr double k_max_calibration = 4.0;
 /// Rays a link all of whose rays were blocked may get before the oracle splits it instead.
-constexpr int k_max_cluster_rays = 256;
+/// On the 2x2 office floor of tessellation 5 at min area 0.244 m², against a solve at a 3x
+/// finer ε, at 32 / 64 / 128 / 256: 9.4 / 9.9 / 10.9 / 11.1 s, 44 / 47 / 50 / 54 M rays,
+/// the elements' indirect irradiance 2.70 / 2.63 / 2.61 / 2.61 % off, its mean 0.9910 /
+/// 0.9923 / 0.9927 / 0.9927 of the reference's (the bias of links taken as dark).
+constexpr int k_max_cluster_rays = 64;
 /// Such a link gets rays until its uncertainty is this many times below the threshold: a link
 /// taken as occluded loses what light it carries, always in the same direction.
 constexpr double k_resample_margin = 16.0;

@@ -52,7 +52,8 @@ void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std:
 void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const LinkSet& links,
                           const std::vector<Rgb>& b, ClusterValues& cv,
                           std::vector<Rgb>& gathered_direct,
-                          std::vector<Rgb>& gathered_indirect, bool increment) {
+                          std::vector<Rgb>& gathered_indirect, bool increment,
+                          bool exact_emitted) {
     const auto& all = links.cluster_links();
     const auto& by_element = links.cluster_offsets_elements();
     const auto& by_cluster = links.cluster_offsets_clusters();
@@ -62,7 +63,11 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
-            const SourceTerm s = source_term(h, links, cv, b, l, increment);
+            SourceTerm s = source_term(h, links, cv, b, l, increment);
+            if (l.exact && !exact_emitted) {
+                s.total = s.total - s.emitted;
+                s.emitted = Rgb{};
+            }
             // An exact link's F holds the cosines.
             const float cosine =
                 l.exact ? 1.0f : float(std::max(0.0, dot(h.normal[q], Vec3(l.d))));
@@ -81,7 +86,11 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
-            const SourceTerm s = source_term(h, links, cv, b, l, increment);
+            SourceTerm s = source_term(h, links, cv, b, l, increment);
+            if (l.exact && !exact_emitted) {
+                s.total = s.total - s.emitted;
+                s.emitted = Rgb{};
+            }
             // An exact link's irradiance is the plane's: deposited along its normal, every
             // root of the face cluster reads it back whole, plus its slope across the plane.
             const Vec3 along = l.exact ? tree.normal[c] : Vec3(l.d);

@@ -37,11 +37,13 @@ void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std:
 ///        \p gathered_indirect and sets the clusters' gathered lobes. Parallel by receiver.
 ///        With \p increment, \p b (and cv.exitance) is radiosity to be sent on top of what
 ///        was (shooting's unshot): all of it counts as indirect, and cv.exitance_emitted is
-///        not read for element sources (the caller zeroes it for clusters).
+///        not read for element sources (the caller zeroes it for clusters). Without
+///        \p exact_emitted, exact links leave what their source emits out (the vertices
+///        gather it themselves, leaf_direct in hierarchical.cpp).
 void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const LinkSet& links,
                           const std::vector<Rgb>& b, ClusterValues& cv,
                           std::vector<Rgb>& gathered_direct, std::vector<Rgb>& gathered_indirect,
-                          bool increment = false);
+                          bool increment = false, bool exact_emitted = true);
 
 /// Pushes the clusters' gathered lobes down to the roots (cv.root_direct / root_indirect).
 void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& cv);

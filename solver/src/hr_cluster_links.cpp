@@ -515,11 +515,13 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         const ClusterLink& l = cluster_links_[k];
         if (cluster_kept_[k])
             return;
-        // An exact link carries reflected light only (its source does not emit): it is weighed
-        // as a lobe link's reflected light is. Against the element threshold (ε × the
-        // brightest exitance, a lamp's) the lamp room's sensor behind the box read 3.1 % high.
-        const double bar =
-            l.exact ? k_exact_slack * settings_.cluster_threshold : settings_.cluster_threshold;
+        // An exact link from a source that does not emit carries reflected light only: it is
+        // weighed as a lobe link's reflected light is (against the element threshold, ε × the
+        // brightest exitance, a lamp's, the lamp room's sensor behind the box read 3.1 %
+        // high). One from an emitter is weighed as a lobe link's direct light.
+        const double bar = l.exact && !emits(l.source)
+                               ? k_exact_slack * settings_.cluster_threshold
+                               : settings_.cluster_threshold;
         if ((l.exact ? exact_link_error(l, b, b_range) : cluster_link_error(l, b)) <= bar)
             return;
         if (l.self) {

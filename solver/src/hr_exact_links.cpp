@@ -82,9 +82,17 @@ bool LinkSet::planar_end(NodeRef n) const {
 }
 
 bool LinkSet::exact_source(NodeRef n) const {
+    return !is_cluster(n) || exact_source_[cluster_index(n)] != 0;
+}
+
+bool LinkSet::emits(NodeRef n) const {
     if (!is_cluster(n))
-        return h_.emission[n].is_black();
-    return exact_source_[cluster_index(n)] != 0;
+        return !h_.emission[n].is_black();
+    const std::uint32_t c = cluster_index(n);
+    for (const Rgb& lobe : (*emitted_)[c])
+        if (!lobe.is_black())
+            return true;
+    return false;
 }
 
 LinkSet::Plane LinkSet::node_plane(NodeRef n) const {
@@ -166,14 +174,20 @@ void LinkSet::build_boundaries() {
     boundary_.reserve(boundary_begin_.back());
     for (const auto& e : edges)
         boundary_.insert(boundary_.end(), e.begin(), e.end());
+    // An emitting face cluster is an exact source when its emission is uniform (a lamp's
+    // panel, not a lamp and the ceiling around it): its vertices' receivers gather it
+    // exactly, root by root.
     exact_source_.assign(tree.size(), 0);
     for (std::size_t c = 0; c < tree.size(); ++c) {
         if (!tree.planar[c])
             continue;
-        bool emits = false;
-        for (std::uint32_t k = root_begin_[c]; k < root_end_[c] && !emits; ++k)
-            emits = !h_.emission[dfs_roots_[k]].is_black();
-        exact_source_[c] = !emits;
+        const Rgb& first = h_.emission[dfs_roots_[root_begin_[c]]];
+        bool uniform = true;
+        for (std::uint32_t k = root_begin_[c]; k < root_end_[c] && uniform; ++k) {
+            const Rgb& e = h_.emission[dfs_roots_[k]];
+            uniform = e.r == first.r && e.g == first.g && e.b == first.b;
+        }
+        exact_source_[c] = uniform;
     }
 }
 

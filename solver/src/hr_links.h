@@ -182,6 +182,13 @@ public:
     /// receiver, in the source's plane (zero where the receiver is nearly straight above):
     /// link.d.y is how far along it the part of the source the receiver sees lies.
     Vec3 exact_source_direction(const ClusterLink& link) const;
+    /// Whether node \p n (an element or a face cluster) emits.
+    bool emits(NodeRef n) const;
+    /// The roots of cluster \p c (until release_refinement_tables).
+    std::span<const std::uint32_t> cluster_roots(std::uint32_t c) const {
+        return std::span<const std::uint32_t>(dfs_roots_)
+            .subspan(root_begin_[c], root_end_[c] - root_begin_[c]);
+    }
     /// The exact link from planar end \p q to planar end \p p (one a face cluster) as the
     /// refinement would make it (link_clusters or attach_clusters first): for tests.
     ClusterLink exact_link(NodeRef q, NodeRef p) const { return make_exact_link(q, p); }
@@ -308,8 +315,9 @@ private:
     };
     /// An element or a face cluster: an end of exact links.
     bool planar_end(NodeRef n) const;
-    /// A planar end none of whose surfaces emits: the source of exact links (the vertices
-    /// gather emitters through element links, leaf_direct in hierarchical.cpp).
+    /// A planar end whose surfaces all emit alike (none, or one emission): the source of
+    /// exact links (their vertices gather an emitting one exactly, leaf_direct in
+    /// hierarchical.cpp).
     bool exact_source(NodeRef n) const;
     Plane node_plane(NodeRef n) const;
     /// Distance between the bounds of two nodes (0 where they overlap).

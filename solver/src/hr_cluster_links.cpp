@@ -491,8 +491,14 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
     const double threshold = settings_.cluster_threshold;
     std::vector<std::uint8_t> changed(cluster_links_.size(), 0);
     parallel_for_index(cluster_links_.size(), 256, [&](std::size_t k) {
+        // A link kept by an earlier pass of this refine() got the rays it asked for then (but
+        // for draws that found no facing surface, made up at the next refine()), and the
+        // radiosities have not changed since: every pass walked every link here (80 M
+        // links, about 30 passes a cycle on the 1M floor). 4x4 proxy: 40.5 s instead of 42.0,
+        // 180 links of 4.5 M differ.
         ClusterLink& l = cluster_links_[k];
-        if (l.self || l.exact || l.visible() > 0 || l.rays == 0 || l.rays >= k_max_cluster_rays)
+        if (cluster_kept_[k] || l.self || l.exact || l.visible() > 0 || l.rays == 0 ||
+            l.rays >= k_max_cluster_rays)
             return;
         const double open = weighed_irradiance(l, b, pair_geometry(l));
         if (open / double(l.rays) <= threshold / k_resample_margin)

@@ -512,10 +512,14 @@ double LinkSet::exact_link_error(const ClusterLink& link, const std::vector<Rgb>
     const double uncertain =
         link.visible() > 0 || link.rays == 0 ? 0.0 : f * mean / double(link.rays);
     // A partly occluded link gives its cluster receiver its mean visibility v everywhere,
-    // across the shadow: where that is sharp, v is off by 2 v (1 − v) on average.
-    const double shadow = link.partial && is_cluster(link.receiver)
-                              ? k_shadow_weight * f * visible * (1.0 - visible) * mean
-                              : 0.0;
+    // across the shadow: where that is sharp, v is off by 2 v (1 − v) on average. As with
+    // the spread, only splitting the receiver resolves that (2x2 office floor: 0.98 M links
+    // instead of 1.01 M, the elements' indirect irradiance 2.72 % off a 3x finer ε instead
+    // of 2.66 %).
+    const double shadow =
+        link.partial && is_cluster(link.receiver) && splittable(link.receiver, true)
+            ? k_shadow_weight * f * visible * (1.0 - visible) * mean
+            : 0.0;
     return estimate * (link.partial ? 2.0 : 1.0) + uncertain + shadow;
 }
 

@@ -106,6 +106,7 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
     options.render = !flags.no_render;
     options.series_every_shots = flags.series_every_shots;
     options.series_dir = flags.output;
+    options.keep_state = !flags.no_state;
     app::BakeResult result = app::bake(scene, options, ctx);
     app::write_outputs(flags.output, scene, result, !flags.no_state);
     const auto& pb = result.stats.power;
@@ -180,8 +181,10 @@ int main(int argc, char** argv) {
                          "hierarchical: re-solve from an earlier bake's folder (or its "
                          "solver_state.bin): same geometry, new reflectances or emissions; keeps "
                          "its links and refines them where the new radiosities need it");
-    bake_cmd->add_flag("--no-state", bake.no_state,
-                       "hierarchical: do not write solver_state.bin (it holds every link)");
+    bake_cmd->add_flag(
+        "--no-state", bake.no_state,
+        "hierarchical: do not write solver_state.bin (it holds every link), and free "
+        "the links once the solve is done");
     bake_cmd->add_option("--series", bake.series_every_shots,
                          "write the solution every K shots as series/mesh_*.vtu + series.pvd")
         ->check(CLI::PositiveNumber);

@@ -62,7 +62,8 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
         solver::SolveResult solved = solver::solve(scene, result.mesh, *rt, ctx, &result.stats,
                                                    series ? &observer : nullptr, options.reuse);
         result.solution = std::move(solved.solution);
-        result.solver_state = std::move(solved.state);
+        if (options.keep_state)
+            result.solver_state = std::move(solved.state);
         if (solved.refined_mesh) {
             // The solution lives on the leaf mesh: trace that from now on.
             result.rays += rt->rays_traced();

@@ -84,6 +84,26 @@ TEST(Reuse, ResolveAfterReflectanceChangeEqualsFullSolve) {
             << "sensor " << s;
 }
 
+// Without keep_state (the CLI's --no-state) the bake frees the links with the solve: its
+// result holds no state, and its solution is the same, element by element.
+TEST(Reuse, BakeWithoutStateKeepsNoLinks) {
+    const Scene scene = coarse_cornell();
+    app::BakeOptions options;
+    options.render = false;
+    options.keep_state = false;
+    const app::BakeResult without = app::bake(scene, options, test::quiet_context());
+    const app::BakeResult with = bake(scene);
+    EXPECT_FALSE(without.solver_state);
+    ASSERT_TRUE(with.solver_state);
+    ASSERT_EQ(without.solution.radiosity.size(), with.solution.radiosity.size());
+    std::size_t differ = 0;
+    for (std::size_t e = 0; e < with.solution.radiosity.size(); ++e) {
+        const Rgb a = without.solution.radiosity[e], b = with.solution.radiosity[e];
+        differ += a.r != b.r || a.g != b.g || a.b != b.b;
+    }
+    EXPECT_EQ(differ, 0u);
+}
+
 TEST(Reuse, RefusesAnotherGeometry) {
     Scene scene = coarse_cornell();
     const app::BakeResult first = bake(scene);

@@ -43,6 +43,10 @@ struct BakeOptions {
     /// Hierarchical: re-solve from this saved state (same geometry; reflectances and
     /// emissions from the scene).
     const solver::HierarchicalState* reuse = nullptr;
+    /// Hierarchical: keep the solver state (every link) in the result, to write
+    /// solver_state.bin; without it the links are freed once the solve is done, before the
+    /// sensors and the render (most of a big scene's memory).
+    bool keep_state = true;
 };
 
 /// \brief Runs mesher, solver, sensors and renderer on \p scene.

@@ -12,17 +12,24 @@ struct SourceTerm {
     Rgb emitted, total; ///< Σ E A cos and Σ B A cos toward the receiver, times g · v
 };
 
+// \p increment and \p exact_emitted: as gather_cluster_links.
 SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterValues& cv,
-                       const std::vector<Rgb>& b, const ClusterLink& link, bool increment) {
+                       const std::vector<Rgb>& b, const ClusterLink& link, bool increment,
+                       bool exact_emitted) {
     const float scale = link.g * link.visible();
     if (link.exact) { // F · v times the radiosity the source sends it
         const bool element = !is_cluster(link.source);
-        return {element && increment
-                    ? Rgb{}
-                    : links.exact_source_radiosity(link, cv.exitance_emitted, cv.gradient_emitted,
-                                                   h.emission) *
-                          scale,
-                links.exact_source_radiosity(link, cv.exitance, cv.gradient, b) * scale};
+        SourceTerm s{element && increment
+                         ? Rgb{}
+                         : links.exact_source_radiosity(link, cv.exitance_emitted,
+                                                        cv.gradient_emitted, h.emission) *
+                               scale,
+                     links.exact_source_radiosity(link, cv.exitance, cv.gradient, b) * scale};
+        if (!exact_emitted) {
+            s.total = s.total - s.emitted;
+            s.emitted = Rgb{};
+        }
+        return s;
     }
     const Vec3 toward_receiver = -Vec3(link.d);
     if (is_cluster(link.source)) {
@@ -43,6 +50,7 @@ void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std:
     pull_lobes(tree, h, h.emission, cv.exitance_emitted);
     planar_gradients(tree, h, h.emission, cv.gradient_emitted);
     pull_clusters(tree, h, b, cv);
+    weigh_departures(tree, h, b, cv);
     cv.gathered_direct.assign(tree.size(), Lobes{});
     cv.gathered_indirect.assign(tree.size(), Lobes{});
     cv.root_direct.assign(h.root_count, Rgb{});
@@ -63,11 +71,7 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
-            SourceTerm s = source_term(h, links, cv, b, l, increment);
-            if (l.exact && !exact_emitted) {
-                s.total = s.total - s.emitted;
-                s.emitted = Rgb{};
-            }
+            const SourceTerm s = source_term(h, links, cv, b, l, increment, exact_emitted);
             // An exact link's F holds the cosines.
             const float cosine =
                 l.exact ? 1.0f : float(std::max(0.0, dot(h.normal[q], Vec3(l.d))));
@@ -86,11 +90,7 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
-            SourceTerm s = source_term(h, links, cv, b, l, increment);
-            if (l.exact && !exact_emitted) {
-                s.total = s.total - s.emitted;
-                s.emitted = Rgb{};
-            }
+            const SourceTerm s = source_term(h, links, cv, b, l, increment, exact_emitted);
             // An exact link's irradiance is the plane's: deposited along its normal, every
             // root of the face cluster reads it back whole, plus its slope across the plane.
             const Vec3 along = l.exact ? tree.normal[c] : Vec3(l.d);
@@ -166,7 +166,7 @@ void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& c
 void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
                    ClusterValues& cv) {
     pull_lobes(tree, h, b, cv.exitance);
-    planar_gradients(tree, h, b, cv.gradient, &cv.departure);
+    planar_gradients(tree, h, b, cv.gradient);
     cv.peak.assign(tree.size(), 0.0f);
     for (std::size_t c = tree.size(); c-- > 0;) // children after parents
         for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
@@ -174,6 +174,11 @@ void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vecto
             cv.peak[c] = std::max(cv.peak[c], is_cluster(child) ? cv.peak[cluster_index(child)]
                                                                 : b[child].max_component());
         }
+}
+
+void weigh_departures(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
+                      ClusterValues& cv) {
+    planar_gradients(tree, h, b, cv.gradient, &cv.departure);
 }
 
 } // namespace penumbra::solver

@@ -18,7 +18,7 @@ struct ClusterValues {
     std::vector<float> peak;              ///< largest radiosity of a root (largest channel)
     /// Of a face cluster: twice the largest departure of its roots' radiosity from its linear
     /// fit (largest channel; 0 for volume clusters): what a source sending the fit's value
-    /// may be off by.
+    /// may be off by (weigh_departures).
     std::vector<float> departure;
     std::vector<Lobes> gathered_direct;   ///< irradiance lobes gathered by each cluster
     std::vector<Lobes> gathered_indirect;
@@ -51,5 +51,11 @@ void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& c
 /// Pulls the roots' radiosity \p b up into the clusters' exitance lobes.
 void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
                    ClusterValues& cv);
+
+/// Sets cv.departure (and cv.gradient, as pull_clusters does) from the roots' radiosities
+/// \p b: what the refinement oracle reads of a face-cluster source, so computed before each
+/// refinement rather than after every sweep (a walk over every face cluster's roots).
+void weigh_departures(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
+                      ClusterValues& cv);
 
 } // namespace penumbra::solver

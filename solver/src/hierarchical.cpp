@@ -299,6 +299,8 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
                      cycle, p.pass, p.kind, p.nodes, p.element_links, p.cluster_links,
                      p.light_links, seconds_since(t0));
         };
+        if (clusters.enabled)
+            weigh_departures(clusters.tree, h, v.b, clusters.values);
         const bool changed = links.refine(v.b, v.b_range, on_pass);
         const double refine_s = seconds_since(t0);
         t0 = Clock::now();

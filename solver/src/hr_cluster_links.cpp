@@ -316,8 +316,8 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     if (open == 0 && !hits.empty()) {
         if (certified_blocked(link.receiver, link.source, segments, hits)) {
             link.rays = std::uint16_t(total);
-            link.g = 0.0f;
-            link.v_bits = 0; // carries nothing: the refinement drops it
+            link.g = 0.0f; // carries nothing: the refinement drops it
+            link.set_visible(0.0);
             return true;
         }
     }
@@ -713,8 +713,6 @@ void LinkSet::release_refinement_tables() {
     dfs_plane_ = {};
     occluders_ = OccluderPlanes();
     lobe_bounds_ = {};
-    kept_ = {};
-    cluster_kept_ = {};
 }
 
 void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,

@@ -175,7 +175,7 @@ void LinkSet::build_boundaries() {
     for (const auto& e : edges)
         boundary_.insert(boundary_.end(), e.begin(), e.end());
     // An emitting face cluster is an exact source when its emission is uniform (a lamp's
-    // panel, not a lamp and the ceiling around it): its vertices' receivers gather it
+    // panel, not a lamp and the ceiling around it): the vertices of its receivers gather it
     // exactly, root by root.
     exact_source_.assign(tree.size(), 0);
     for (std::size_t c = 0; c < tree.size(); ++c) {
@@ -183,10 +183,8 @@ void LinkSet::build_boundaries() {
             continue;
         const Rgb& first = h_.emission[dfs_roots_[root_begin_[c]]];
         bool uniform = true;
-        for (std::uint32_t k = root_begin_[c]; k < root_end_[c] && uniform; ++k) {
-            const Rgb& e = h_.emission[dfs_roots_[k]];
-            uniform = e.r == first.r && e.g == first.g && e.b == first.b;
-        }
+        for (std::uint32_t k = root_begin_[c]; k < root_end_[c] && uniform; ++k)
+            uniform = h_.emission[dfs_roots_[k]] == first;
         exact_source_[c] = uniform;
     }
 }
@@ -478,8 +476,8 @@ ClusterLink LinkSet::make_exact_link(NodeRef q, NodeRef p) const {
     }
     link.rays = std::uint16_t(segments.size());
     if (open_rays == 0 && certified_blocked(q, p, segments, hits)) {
-        link.g = 0.0f;
-        link.v_bits = 0; // carries nothing: the refinement drops it
+        link.g = 0.0f; // carries nothing: the refinement drops it
+        link.set_visible(0.0);
         return link;
     }
     link.set_visible(all > 0 ? open / all : 0.0);

@@ -182,7 +182,8 @@ public:
     /// receiver, in the source's plane (zero where the receiver is nearly straight above):
     /// link.d.y is how far along it the part of the source the receiver sees lies.
     Vec3 exact_source_direction(const ClusterLink& link) const;
-    /// Whether node \p n (an element or a face cluster) emits.
+    /// Whether node \p n (an element or a face cluster) emits (until
+    /// release_refinement_tables).
     bool emits(NodeRef n) const;
     /// The roots of cluster \p c (until release_refinement_tables).
     std::span<const std::uint32_t> cluster_roots(std::uint32_t c) const {
@@ -287,7 +288,7 @@ private:
     double node_area(NodeRef n) const;
     /// Whether refinement may split node \p n: an element above the minimum area or with
     /// children; a cluster, except for an \p exact link a face cluster no larger than the
-    /// minimum area (its reflected light is not resolved below it, as an element's).
+    /// minimum area (light between planar ends is not resolved below it, as an element's).
     bool splittable(NodeRef n, bool exact = false) const;
     /// Some surface of cluster \p c may face some point of \p other (by its axis lobes and
     /// the bounding boxes: conservative).

@@ -24,18 +24,6 @@ GatherSources direct_sources(const Scene& scene, const std::vector<Rgb>& element
 ///        means of the elements around each vertex.
 Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& result);
 
-/// \brief Packs element results and reconstructs vertex values: direct irradiance gathered at
-///        each vertex itself (Wallace et al. 1989's vertex receivers), indirect as the
-///        area-weighted mean of the vertex's elements, B = E + ρ H.
-/// \p emitters: where the vertices gather direct light from, if not \p mesh's own emitting
-/// elements: the same surfaces in fewer elements (hierarchical radiosity passes the roots, so
-/// that the rays per vertex do not grow with the emitters' refinement; emission is uniform
-/// over a root, and analytic form factors add up over a partition).
-/// \p near / \p far (optional, per element of the mesh, hierarchical radiosity): a vertex
-/// gathers exactly from the union of its elements' near emitters only (indices into geo, in
-/// increasing order), and adds the area-weighted mean of their far direct irradiance: the
-/// light of emitters that reach the element through cluster links (a vertex would otherwise
-/// gather from every emitter in the scene, which grows with the scene's size squared).
 /// Per element, a sorted list of emitting elements (CSR: element e's are
 /// roots[first[e], first[e + 1])).
 struct EmitterLists {
@@ -46,6 +34,19 @@ struct EmitterLists {
     }
 };
 
+/// \brief Packs element results and reconstructs vertex values: direct irradiance gathered at
+///        each vertex itself (Wallace et al. 1989's vertex receivers), indirect as the
+///        area-weighted mean of the vertex's elements, B = E + ρ H.
+/// \p emitters: where the vertices gather direct light from, if not \p mesh's own emitting
+/// elements: the same surfaces in fewer elements (hierarchical radiosity passes the roots, so
+/// that the rays per vertex do not grow with the emitters' refinement; emission is uniform
+/// over a root, and analytic form factors add up over a partition).
+/// \p near / \p far (optional, per element of the mesh, hierarchical radiosity): a vertex
+/// gathers exactly from the union of its elements' near emitters only (indices into geo, in
+/// increasing order), and adds the area-weighted mean of their far direct irradiance: the
+/// light of emitters that reach the element through cluster links other than exact ones (a
+/// vertex would otherwise
+/// gather from every emitter in the scene, which grows with the scene's size squared).
 struct DirectEmitters {
     const ElementGeometry& geo;
     GatherSources sources;

@@ -26,6 +26,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
+#include <tuple>
+
+#include <tbb/parallel_sort.h>
 
 #include "core/parallel.h"
 #include "form_factor.h"
@@ -358,9 +362,13 @@ bool LinkSet::shaft_end(NodeRef n, NodeRef other, std::uint32_t plane, double si
         return true;
     }
     const std::uint32_t c = cluster_index(n);
+    // A box flat along an axis (a face cluster's in an axis plane) has half the corners:
+    // the shaft's hull is made of the crossings of every pair of the two ends' points.
     auto corners = [](const Vec3& lo, const Vec3& hi, auto&& fn) {
+        const int flat = (lo.x == hi.x ? 1 : 0) | (lo.y == hi.y ? 2 : 0) | (lo.z == hi.z ? 4 : 0);
         for (int k = 0; k < 8; ++k)
-            fn(Vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z));
+            if ((k & flat) == 0)
+                fn(Vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z));
     };
     bool on_side = true;
     corners(tree_->lo[c], tree_->hi[c], [&](const Vec3& x) {
@@ -528,7 +536,8 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         const double bar = l.exact && !emits(l.source)
                                ? k_exact_slack * settings_.cluster_threshold
                                : settings_.cluster_threshold;
-        if ((l.exact ? exact_link_error(l, b, b_range) : cluster_link_error(l, b)) <= bar)
+        const double err = l.exact ? exact_link_error(l, b, b_range) : cluster_link_error(l, b);
+        if (err <= bar)
             return;
         if (l.self) {
             decision[k] = split_self;
@@ -594,9 +603,13 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         }
     }
     cluster_links_.resize(kept + cluster_pairs.size());
+    const std::vector<std::uint32_t> reverse = exact_reverses(cluster_pairs);
     parallel_for_index(cluster_pairs.size(), 16, [&](std::size_t i) {
-        cluster_links_[kept + i] =
-            make_cluster_link(cluster_pairs[i].first, cluster_pairs[i].second);
+        const auto [q, p] = cluster_pairs[i];
+        if (reverse[i] == k_no_reverse)
+            cluster_links_[kept + i] = make_cluster_link(q, p);
+        else if (reverse[i] > i)
+            make_exact_pair(q, p, cluster_links_[kept + i], cluster_links_[kept + reverse[i]]);
     });
     cluster_pairs = {};
     // Drop the new links that carry nothing (the kept ones all carry something).
@@ -610,6 +623,29 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
     std::fill(cluster_kept_.begin(), cluster_kept_.begin() + std::ptrdiff_t(kept),
               std::uint8_t(1));
     return true;
+}
+
+std::vector<std::uint32_t>
+LinkSet::exact_reverses(const std::vector<std::pair<NodeRef, NodeRef>>& pairs) const {
+    std::vector<std::uint32_t> order(pairs.size()), reverse(pairs.size(), k_no_reverse);
+    std::iota(order.begin(), order.end(), 0u);
+    auto key = [&](std::uint32_t i) {
+        const auto [q, p] = pairs[i];
+        return std::tuple(std::min(q, p), std::max(q, p), q);
+    };
+    tbb::parallel_sort(order.begin(), order.end(),
+                       [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+    for (std::size_t k = 0; k + 1 < order.size(); ++k) {
+        const auto [q, p] = pairs[order[k]];
+        const auto [q2, p2] = pairs[order[k + 1]];
+        if (q != p && q == p2 && p == q2 && planar_end(q) && planar_end(p) && exact_source(q) &&
+            exact_source(p)) {
+            reverse[order[k]] = order[k + 1];
+            reverse[order[k + 1]] = order[k];
+            ++k;
+        }
+    }
+    return reverse;
 }
 
 // A source end is drawn by exitance (area × radiosity), so that the rays' visible fraction is

@@ -193,6 +193,13 @@ public:
     /// The exact link from planar end \p q to planar end \p p (one a face cluster) as the
     /// refinement would make it (link_clusters or attach_clusters first): for tests.
     ClusterLink exact_link(NodeRef q, NodeRef p) const { return make_exact_link(q, p); }
+    /// The exact links q ← p and p ← q as the refinement makes a pair linked both ways in one
+    /// pass: for tests.
+    std::pair<ClusterLink, ClusterLink> exact_pair(NodeRef q, NodeRef p) const {
+        std::pair<ClusterLink, ClusterLink> out;
+        make_exact_pair(q, p, out.first, out.second);
+        return out;
+    }
     /// Frees the tables refinement and the cluster links' gather read (the cluster tree's
     /// roots, boundaries, bounds and occluder planes), keeping the links: after the last
     /// gather, before the output stage.
@@ -310,6 +317,13 @@ private:
         std::uint32_t root = 0;
         std::uint8_t from = 0, to = 0;
     };
+    /// A straight run of a face cluster's boundary edges: from corner \p from of root
+    /// \p from_root to corner \p to of root \p to_root. Collinear edges in a row add up to
+    /// the one edge in the contour sum (their terms share the plane through the point).
+    struct ContourEdge {
+        std::uint32_t from_root = 0, to_root = 0;
+        std::uint8_t from = 0, to = 0;
+    };
     struct WeightedPoint {
         Vec3 x;
         double w = 0;
@@ -328,6 +342,10 @@ private:
     void for_each_corner(NodeRef n, Fn&& fn) const;
     /// The face clusters' boundaries (boundary_) and which are exact sources.
     void build_boundaries();
+    /// Appends the boundary \p edges of a face cluster to \p out, collinear edges in a row
+    /// as one.
+    void merge_collinear(const std::vector<BoundaryEdge>& edges,
+                         std::vector<ContourEdge>& out) const;
     /// F from a point \p x of normal \p n to planar end \p p of plane \p plane; sets
     /// \p unresolved where p is a cluster too large to clip to x's hemisphere.
     double point_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const Plane& plane,
@@ -337,9 +355,39 @@ private:
     /// The unit direction from face cluster \p from's centroid toward \p toward's, in
     /// from's plane; zero for an element, or where toward is nearly straight above.
     Vec3 planar_direction(NodeRef from, NodeRef toward) const;
+    /// One end of an exact link's pair: quadrature points over it and the point form factors
+    /// from them toward the other end, their mean, least and greatest.
+    struct ExactEnd {
+        std::vector<WeightedPoint> points;
+        std::vector<double> values;
+        double f = 0, lo = 0, hi = 0;
+        bool unresolved = false; ///< the other end is a cluster too large to clip
+    };
+    /// Points over planar end \p q (at most \p count) and their form factors toward \p p.
+    void exact_end(NodeRef q, NodeRef p, const Plane& pq, const Plane& pp, int count,
+                   ExactEnd& end) const;
+    /// How many points over receiver \p q an exact link from \p p takes.
+    int exact_point_count(NodeRef q, NodeRef p, const Plane& pp) const;
+    /// Some of each end faces the other, and no plane between their centres proves them dark.
+    bool exact_ends_open(NodeRef q, NodeRef p, const Plane& pq, const Plane& pp) const;
     /// How far along planar_direction(p, q) the part of face cluster \p p that \p q sees
-    /// most of lies from p's centroid (ClusterLink::d.y), from \p count points over p.
-    double seen_offset(NodeRef q, NodeRef p, const Plane& pq, const Plane& pp, int count) const;
+    /// most of lies from p's centroid (ClusterLink::d.y), from the points \p end over p.
+    double seen_offset(NodeRef p, NodeRef q, const ExactEnd& end) const;
+    /// Sets an exact link's form factor, spread, slope and (given its \p source end, a
+    /// cluster's) offset from its \p receiver end; false if it carries nothing.
+    bool set_exact_form_factor(ClusterLink& link, const ExactEnd& receiver,
+                               const ExactEnd* source) const;
+    /// Casts an exact link's rays: its visible fraction, or its proof of darkness (g = 0).
+    void exact_visibility(ClusterLink& link, const Plane& pq, const Plane& pp) const;
+    static ClusterLink exact_placeholder(NodeRef q, NodeRef p);
+    static constexpr std::uint32_t k_no_reverse = ~std::uint32_t(0);
+    /// Per pair of \p pairs (receiver, source), the index of its reverse where both are
+    /// exact links (make_exact_pair makes them together), else k_no_reverse.
+    std::vector<std::uint32_t>
+    exact_reverses(const std::vector<std::pair<NodeRef, NodeRef>>& pairs) const;
+    /// The exact links q ← p and p ← q, as make_exact_link makes them but for the points
+    /// each end takes (the larger of its own count and what the other's offset asks).
+    void make_exact_pair(NodeRef q, NodeRef p, ClusterLink& qp, ClusterLink& pq) const;
     /// Σ of the point form factors from \p x to the roots dfs_roots_[begin, end).
     double root_form_factors(const Vec3& x, const Vec3& n, std::uint32_t begin,
                              std::uint32_t end) const;
@@ -373,7 +421,7 @@ private:
     const std::vector<float>* peak_ = nullptr;
     const std::vector<float>* departure_ = nullptr; ///< ClusterValues::departure
     /// Per face cluster c, its boundary boundary_[boundary_begin_[c], boundary_begin_[c + 1]).
-    std::vector<BoundaryEdge> boundary_;
+    std::vector<ContourEdge> boundary_;
     std::vector<std::uint32_t> boundary_begin_;
     std::vector<std::uint8_t> exact_source_; ///< per cluster (exact_source)
     std::vector<Lobes> area_lobes_; ///< per cluster: Σ A max(0, ±n_a)

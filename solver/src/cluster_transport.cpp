@@ -13,13 +13,23 @@ struct SourceTerm {
 };
 
 // \p increment and \p exact_emitted: as gather_cluster_links.
+bool lobes_black(const Lobes& lobes) {
+    for (const Rgb& lobe : lobes)
+        if (!lobe.is_black())
+            return false;
+    return true;
+}
+
 SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterValues& cv,
                        const std::vector<Rgb>& b, const ClusterLink& link, bool increment,
                        bool exact_emitted) {
     const float scale = link.g * link.visible();
     if (link.exact) { // F · v times the radiosity the source sends it
         const bool element = !is_cluster(link.source);
-        SourceTerm s{element && increment
+        // Most sources emit nothing: their emitted part is not worked out.
+        const bool emits = element ? !h.emission[link.source].is_black()
+                                   : !lobes_black(cv.exitance_emitted[cluster_index(link.source)]);
+        SourceTerm s{(element && increment) || !emits
                          ? Rgb{}
                          : links.exact_source_radiosity(link, cv.exitance_emitted,
                                                         cv.gradient_emitted, h.emission) *

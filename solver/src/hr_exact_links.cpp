@@ -574,6 +574,7 @@ void LinkSet::exact_visibility(ClusterLink& link, const Plane& pq, const Plane& 
     thread_local std::vector<Segment> segments;
     thread_local std::vector<double> kernel;
     thread_local std::vector<std::int32_t> hits;
+    thread_local std::vector<std::uint8_t> blocked;
     segments.clear();
     kernel.clear();
     for (int k = 0; k < 2 * rays && int(segments.size()) < rays; ++k) {
@@ -592,22 +593,29 @@ void LinkSet::exact_visibility(ClusterLink& link, const Plane& pq, const Plane& 
         link.partial = 1;
         return;
     }
-    hits.resize(segments.size());
-    visibility_.first_hit(segments, hits);
+    // Occlusion rays, which stop at any hit; a link all of whose rays are blocked traces them
+    // again to their first hits, the planes that may prove it dark (a sixth of the office
+    // floors' exact links: the proxy solved in 30.1 s instead of 31.3 s, the same links).
+    blocked.resize(segments.size());
+    visibility_.occluded(segments, blocked);
     double all = 0, open = 0;
     int open_rays = 0;
     for (std::size_t k = 0; k < segments.size(); ++k) {
         all += kernel[k];
-        if (hits[k] == -1) {
+        if (!blocked[k]) {
             open += kernel[k];
             ++open_rays;
         }
     }
     link.rays = std::uint16_t(segments.size());
-    if (open_rays == 0 && certified_blocked(q, p, segments, hits)) {
-        link.g = 0.0f; // carries nothing: the refinement drops it
-        link.set_visible(0.0);
-        return;
+    if (open_rays == 0) {
+        hits.resize(segments.size());
+        visibility_.first_hit(segments, hits);
+        if (certified_blocked(q, p, segments, hits)) {
+            link.g = 0.0f; // carries nothing: the refinement drops it
+            link.set_visible(0.0);
+            return;
+        }
     }
     link.set_visible(all > 0 ? open / all : 0.0);
     link.partial = open_rays > 0 && open_rays < int(segments.size());

@@ -405,6 +405,8 @@ private:
     /// and its range over the source (clusters: their departure from the linear fit).
     double exact_link_error(const ClusterLink& link, const std::vector<Rgb>& b,
                             const std::vector<float>& b_range) const;
+    /// What the oracle weighs an exact link from \p p against (W/m²).
+    double exact_bar(NodeRef p) const;
 
     Hierarchy& h_;
     std::vector<std::int32_t>& twin_;

@@ -39,8 +39,10 @@ Vec3 at_barycentrics(const std::array<Vec3, 3>& t, const std::array<double, 2>& 
 /// Quadrature points on a receiver cluster: up to this many (4 for a receiver small against
 /// the distance).
 constexpr int k_exact_points = 128;
-/// A source cluster straddling a quadrature point's tangent plane is clipped triangle by
-/// triangle if it has at most this many roots; a larger one is split by the oracle at once.
+/// A source cluster straddling a quadrature point's tangent plane is clipped there
+/// (clipped_contour, or triangle by triangle where its crossings do not pair up) if it has
+/// at most this many roots; a larger one is split by the oracle at once (the links it splits
+/// into are better for the shooting iteration: HierarchicalIterations' Cornell box).
 constexpr std::uint32_t k_clip_roots = 64;
 /// An exact link with a receiver cluster closer to its source than this times its radius
 /// takes the finest points.
@@ -275,7 +277,95 @@ double LinkSet::point_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const
         unresolved = true;
         return 0.0;
     }
-    return root_form_factors(x, n, root_begin_[c], root_end_[c]);
+    bool clipped = false;
+    const double f = clipped_contour(x, n, c, plane.n, clipped);
+    return clipped ? f : root_form_factors(x, n, root_begin_[c], root_end_[c]);
+}
+
+// The part of a face cluster in front of x's tangent plane has for its boundary the parts of
+// the cluster's boundary in front (clipped where they cross) and the intervals of the line
+// where the two planes meet that lie inside the cluster, each run from where the boundary
+// leaves the half-space to where it comes back: along cross(n, normal) for a boundary wound
+// counter-clockwise about the cluster's normal. Sorted along it, the crossings pair up into
+// those intervals (a vertex on the line is crossed out of and back into at the same point,
+// taken in the order that keeps the pairs). Root by root, the clipped clusters of the office
+// floors took a twentieth of the solve.
+double LinkSet::clipped_contour(const Vec3& x, const Vec3& n, std::uint32_t c, const Vec3& normal,
+                                bool& ok) const {
+    struct Crossing {
+        double t = 0;
+        Vec3 at;
+        bool exit = false;
+    };
+    thread_local std::vector<Crossing> crossings;
+    crossings.clear();
+    const Vec3 along = cross(n, normal);
+    // Planes (nearly) parallel: x lies in the cluster's plane, which straddles its tangent
+    // plane by rounding alone, and the line they meet on is undefined.
+    if (!(dot(along, along) > 1e-12))
+        return ok = false, 0.0;
+    double sum = 0;
+    for (std::uint32_t k = boundary_begin_[c]; k < boundary_begin_[c + 1]; ++k) {
+        const ContourEdge& e = boundary_[k];
+        const Vec3& a = h_.triangle[e.from_root][e.from];
+        const Vec3& b = h_.triangle[e.to_root][e.to];
+        const double ha = dot(a - x, n), hb = dot(b - x, n);
+        const bool in_a = ha > 0, in_b = hb > 0; // a point on the plane counts as behind it
+        if (in_a && in_b) {
+            sum += contour_term(x, n, a, b);
+            continue;
+        }
+        if (in_a == in_b)
+            continue;
+        // Where the edge crosses: the vertex itself where it lies on the plane.
+        const Vec3 at = ha == 0 ? a : hb == 0 ? b : a + (b - a) * (ha / (ha - hb));
+        crossings.push_back({dot(at, along), at, in_a});
+        sum += in_a ? contour_term(x, n, a, at) : contour_term(x, n, at, b);
+    }
+    std::sort(crossings.begin(), crossings.end(),
+              [](const Crossing& u, const Crossing& v) { return u.t < v.t; });
+    const Crossing* open = nullptr;
+    for (std::size_t i = 0; i < crossings.size();) {
+        std::size_t j = i; // crossings [i, j) at one point of the line
+        while (j < crossings.size() && crossings[j].t == crossings[i].t)
+            ++j;
+        std::size_t exits = 0;
+        for (std::size_t k = i; k < j; ++k)
+            exits += crossings[k].exit;
+        std::size_t entries = (j - i) - exits;
+        const std::size_t first_exit = [&] {
+            for (std::size_t k = i; k < j; ++k)
+                if (crossings[k].exit)
+                    return k;
+            return j;
+        }();
+        const std::size_t first_entry = [&] {
+            for (std::size_t k = i; k < j; ++k)
+                if (!crossings[k].exit)
+                    return k;
+            return j;
+        }();
+        // Inside an interval an entry closes it, outside one an exit opens it.
+        while (exits + entries > 0) {
+            if (open == nullptr) {
+                if (exits == 0)
+                    return ok = false, 0.0;
+                open = &crossings[first_exit];
+                --exits;
+            } else {
+                if (entries == 0)
+                    return ok = false, 0.0;
+                sum += contour_term(x, n, open->at, crossings[first_entry].at);
+                open = nullptr;
+                --entries;
+            }
+        }
+        i = j;
+    }
+    if (open != nullptr)
+        return ok = false, 0.0;
+    ok = true;
+    return std::abs(sum) / (2.0 * k_pi);
 }
 
 double LinkSet::root_form_factors(const Vec3& x, const Vec3& n, std::uint32_t begin,

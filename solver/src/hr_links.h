@@ -388,6 +388,12 @@ private:
     /// The exact links q ← p and p ← q, as make_exact_link makes them but for the points
     /// each end takes (the larger of its own count and what the other's offset asks).
     void make_exact_pair(NodeRef q, NodeRef p, ClusterLink& qp, ClusterLink& pq) const;
+    /// F from a point \p x of normal \p n to the part of face cluster \p c (of plane normal
+    /// \p normal) in front of x's tangent plane, by the contour of that part; \p ok is false
+    /// where its crossings of the plane do not pair up (then the roots are clipped one by
+    /// one).
+    double clipped_contour(const Vec3& x, const Vec3& n, std::uint32_t c, const Vec3& normal,
+                           bool& ok) const;
     /// Σ of the point form factors from \p x to the roots dfs_roots_[begin, end).
     double root_form_factors(const Vec3& x, const Vec3& n, std::uint32_t begin,
                              std::uint32_t end) const;

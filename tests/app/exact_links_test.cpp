@@ -158,6 +158,39 @@ TEST(ExactLinks, FormFactorMatchesAnalyticRectangles) {
     EXPECT_NEAR(link.g, 0.200044, 5e-3 * 0.200044);
 }
 
+// A wall standing across a floor sees the part of the floor in front of it: the exact link
+// clips the floor's outline to each of the wall's points' tangent planes (clipped_contour).
+// Its F is the mean, over the same points (4 per root), of the point form factors to the
+// floor's roots clipped one by one: within 1e-6, with the wall on a line of the floor's
+// tiling (its vertices on the plane) and off it.
+TEST(ExactLinks, SourceAcrossTheReceiversPlaneIsClipped) {
+    for (const double at : {0.5, 0.4}) {
+        // Floor [0, 1]² facing up (4 x 4 tiles: lines at x = 0.25, 0.5, 0.75); a 1 x 1 wall
+        // at x = `at` facing −x.
+        Pair pair({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {at, 1, 0}, {0, 0, 1}, {0, -1, 0});
+        const ClusterLink link = pair.links->exact_link(pair.b, pair.a);
+        ASSERT_TRUE(link.exact);
+        ASSERT_FALSE(link.unresolved());
+        std::array<std::array<double, 2>, solver::k_max_quadrature_points> bary;
+        std::size_t m = 0;
+        solver::quadrature_barycentrics(1, bary.data(), &m);
+        double sum = 0, area = 0;
+        for (std::uint32_t r : pair.roots(pair.b)) {
+            const auto& t = pair.h->triangle[r];
+            for (std::size_t k = 0; k < m; ++k) {
+                const Vec3 x =
+                    t[0] * (1.0 - bary[k][0] - bary[k][1]) + t[1] * bary[k][0] + t[2] * bary[k][1];
+                sum += pair.point_ff(x, pair.h->normal[r], pair.a) * pair.h->area[r] / double(m);
+            }
+            area += pair.h->area[r];
+        }
+        const double expected = sum / area;
+        std::printf("wall at x = %g: F %.7f, root by root %.7f\n", at, double(link.g), expected);
+        EXPECT_GT(expected, 0.05);
+        EXPECT_NEAR(link.g, expected, 1e-6);
+    }
+}
+
 // A wall beside a floor lights it by a gradient across the floor: the plane the floor
 // cluster takes (F + slope · offset) stays within half the link's spread of the point form
 // factors at its roots' centroids, at least twice as close as its mean alone, and gives the

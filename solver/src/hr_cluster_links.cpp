@@ -154,8 +154,15 @@ Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec
     const std::uint32_t c = cluster_index(n);
     for (int attempt = 0; attempt < k_facing_tries; ++attempt) {
         const std::size_t k = draw_root(c, rng.next_double(), running);
-        if (dot(toward, dfs_plane_[k].n) <= dfs_plane_[k].d)
+        if (dot(toward, dfs_plane_[k].n) <= dfs_plane_[k].d) {
+            // A face cluster's roots share its plane: none of the others would face it
+            // either. The stream skips their draws, as if they had been made.
+            if (tree_->planar[c]) {
+                rng.advance(k_facing_tries - 1 - attempt);
+                break;
+            }
             continue;
+        }
         const std::uint32_t e = dfs_roots_[k];
         normal = h_.normal[e];
         return sample_triangle(h_.triangle[e], rng.next_double(), rng.next_double());
@@ -585,11 +592,17 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         else if (sp)
             decision[k] = split_source;
     });
-    if (std::none_of(decision.begin(), decision.end(), [](std::uint8_t d) { return d != keep; })) {
+    // Links before the first split stay where they are: a late pass of a big refinement splits
+    // a few of the newest links among tens of millions (the 1M floor's cycles took 20-30
+    // passes), and moving every kept link was most of such a pass.
+    const std::size_t first = std::size_t(
+        std::find_if(decision.begin(), decision.end(), [](std::uint8_t d) { return d != keep; }) -
+        decision.begin());
+    if (first == decision.size()) {
         cluster_kept_.assign(cluster_links_.size(), 1);
         return resampled;
     }
-    for (std::size_t k = 0; k < cluster_links_.size(); ++k) {
+    for (std::size_t k = first; k < cluster_links_.size(); ++k) {
         const ClusterLink& l = cluster_links_[k];
         const NodeRef n = decision[k] == split_receiver ? l.receiver : l.source;
         if ((decision[k] == split_receiver || decision[k] == split_source) && !is_cluster(n))
@@ -605,8 +618,8 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         else if (linkable(q, p))
             links_.emplace_back(q, p, 0.0f, 0.0f, false);
     };
-    std::size_t kept = 0;
-    for (std::size_t k = 0; k < cluster_links_.size(); ++k) {
+    std::size_t kept = first;
+    for (std::size_t k = first; k < cluster_links_.size(); ++k) {
         const ClusterLink l = cluster_links_[k];
         switch (decision[k]) {
         case keep:
@@ -791,11 +804,13 @@ void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& e
 }
 
 void LinkSet::index_cluster_links() {
-    // In place (a stable sort would copy them): a receiver links to a source once.
-    std::sort(cluster_links_.begin(), cluster_links_.end(),
-              [](const ClusterLink& a, const ClusterLink& b) {
-                  return a.receiver != b.receiver ? a.receiver < b.receiver : a.source < b.source;
-              });
+    // In place (a stable sort would copy them): a receiver links to a source once, so the
+    // order is total and the result the same on any thread count.
+    tbb::parallel_sort(cluster_links_.begin(), cluster_links_.end(),
+                       [](const ClusterLink& a, const ClusterLink& b) {
+                           return a.receiver != b.receiver ? a.receiver < b.receiver
+                                                           : a.source < b.source;
+                       });
     cl_elements_.assign(h_.size() + 1, 0);
     cl_clusters_.assign(tree_->size() + 1, 0);
     for (const ClusterLink& l : cluster_links_) {

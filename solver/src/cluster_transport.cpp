@@ -96,6 +96,9 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
     parallel_for_index(tree.size(), 64, [&](std::size_t c) {
         Lobes direct{}, indirect{};
         Slope slope_direct{}, slope_indirect{};
+        // The frame exact links' slopes are given in (LinkSet::exact_slope), once per
+        // receiver rather than per link.
+        const Frame frame = tree.planar[c] ? Frame::from_normal(tree.normal[c]) : Frame{};
         for (std::uint32_t k = by_cluster[c]; k < by_cluster[c + 1]; ++k) {
             const ClusterLink& l = all[k];
             if (l.self)
@@ -107,7 +110,7 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
             lobe_deposit(direct, along, s.emitted);
             lobe_deposit(indirect, along, s.total - s.emitted);
             if (l.exact && (l.d.z != 0 || l.slope_t != 0) && l.g > 0) {
-                const Vec3 t = links.exact_slope(l) * double(1.0f / l.g);
+                const Vec3 t = LinkSet::exact_slope(l, frame) * double(1.0f / l.g);
                 for (std::size_t a = 0; a < 3; ++a) {
                     slope_direct[a] += s.emitted * float(t[a]);
                     slope_indirect[a] += (s.total - s.emitted) * float(t[a]);

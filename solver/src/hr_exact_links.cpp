@@ -515,8 +515,7 @@ void LinkSet::fit_slope(ClusterLink& link, const std::vector<WeightedPoint>& poi
 Vec3 LinkSet::exact_slope(const ClusterLink& link) const {
     if (!is_cluster(link.receiver))
         return {};
-    const Frame frame = Frame::from_normal(tree_->normal[cluster_index(link.receiver)]);
-    return frame.s * double(link.d.z) + frame.t * double(link.slope_t);
+    return exact_slope(link, Frame::from_normal(tree_->normal[cluster_index(link.receiver)]));
 }
 
 // By symmetry of the kernel, the part of source p that receiver q sees most of (the

@@ -178,6 +178,10 @@ public:
     /// The gradient (per metre, in its plane) of the form factor of an exact link over its
     /// cluster receiver, which takes F + gradient · (x − centroid); zero for an element.
     Vec3 exact_slope(const ClusterLink& link) const;
+    /// The same given the frame of the receiver's plane (Frame::from_normal of its normal).
+    static Vec3 exact_slope(const ClusterLink& link, const Frame& frame) {
+        return frame.s * double(link.d.z) + frame.t * double(link.slope_t);
+    }
     /// The unit direction from an exact link's cluster source's centroid toward its
     /// receiver, in the source's plane (zero where the receiver is nearly straight above):
     /// link.d.y is how far along it the part of the source the receiver sees lies.

@@ -179,8 +179,10 @@ std::size_t LinkSet::draw_root(std::uint32_t c, double u,
     // smoothly in depth-first order, so the search gallops out from where x would be were
     // they equal: a binary search over a large cluster's range missed the cache at most
     // steps (draw_root and its caller took a tenth of the 4x4 proxy's solve).
-    std::size_t lo = begin + 1, hi = std::size_t(end) + 1;
     const std::size_t n = end - begin;
+    if (n <= 1)
+        return begin;
+    std::size_t lo = begin + 1, hi = std::size_t(end) + 1;
     const std::size_t guess = lo + std::min(n - 1, std::size_t(u * double(n)));
     if (running[guess] > x) {
         hi = guess;

@@ -155,8 +155,10 @@ Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec
     for (int attempt = 0; attempt < k_facing_tries; ++attempt) {
         const std::size_t k = draw_root(c, rng.next_double(), running);
         if (dot(toward, dfs_plane_[k].n) <= dfs_plane_[k].d) {
-            // A face cluster's roots share its plane: none of the others would face it
-            // either. The stream skips their draws, as if they had been made.
+            // A face cluster's roots share its plane (to its grouping's tolerance): none of
+            // the others would face it either, but for an end within that tolerance of the
+            // plane (a grazing transfer). The stream skips their draws, as if they had been
+            // made.
             if (tree_->planar[c]) {
                 rng.advance(k_facing_tries - 1 - attempt);
                 break;

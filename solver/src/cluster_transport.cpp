@@ -13,13 +13,6 @@ struct SourceTerm {
 };
 
 // \p increment and \p exact_emitted: as gather_cluster_links.
-bool lobes_black(const Lobes& lobes) {
-    for (const Rgb& lobe : lobes)
-        if (!lobe.is_black())
-            return false;
-    return true;
-}
-
 SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterValues& cv,
                        const std::vector<Rgb>& b, const ClusterLink& link, bool increment,
                        bool exact_emitted) {
@@ -27,9 +20,7 @@ SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterVa
     if (link.exact) { // F · v times the radiosity the source sends it
         const bool element = !is_cluster(link.source);
         // Most sources emit nothing: their emitted part is not worked out.
-        const bool emits = element ? !h.emission[link.source].is_black()
-                                   : !lobes_black(cv.exitance_emitted[cluster_index(link.source)]);
-        SourceTerm s{(element && increment) || !emits
+        SourceTerm s{(element && increment) || !links.emits(link.source)
                          ? Rgb{}
                          : links.exact_source_radiosity(link, cv.exitance_emitted,
                                                         cv.gradient_emitted, h.emission) *

@@ -329,22 +329,13 @@ double LinkSet::clipped_contour(const Vec3& x, const Vec3& n, std::uint32_t c, c
         std::size_t j = i; // crossings [i, j) at one point of the line
         while (j < crossings.size() && crossings[j].t == crossings[i].t)
             ++j;
-        std::size_t exits = 0;
-        for (std::size_t k = i; k < j; ++k)
-            exits += crossings[k].exit;
-        std::size_t entries = (j - i) - exits;
-        const std::size_t first_exit = [&] {
-            for (std::size_t k = i; k < j; ++k)
-                if (crossings[k].exit)
-                    return k;
-            return j;
-        }();
-        const std::size_t first_entry = [&] {
-            for (std::size_t k = i; k < j; ++k)
-                if (!crossings[k].exit)
-                    return k;
-            return j;
-        }();
+        std::size_t exits = 0, entries = 0, first_exit = j, first_entry = j;
+        for (std::size_t k = i; k < j; ++k) {
+            if (crossings[k].exit)
+                first_exit = exits++ == 0 ? k : first_exit;
+            else
+                first_entry = entries++ == 0 ? k : first_entry;
+        }
         // Inside an interval an entry closes it, outside one an exit opens it.
         while (exits + entries > 0) {
             if (open == nullptr) {
@@ -609,8 +600,8 @@ ClusterLink LinkSet::make_exact_link(NodeRef q, NodeRef p) const {
     thread_local ExactEnd receiver, source;
     const int count = exact_point_count(q, p, pp);
     exact_end(q, p, pq, pp, count, receiver);
-    const bool offset = is_cluster(p) && !receiver.unresolved &&
-                        dot(planar_direction(p, q), planar_direction(p, q)) > 0;
+    const Vec3 toward = planar_direction(p, q); // zero: the source sends its mean
+    const bool offset = is_cluster(p) && !receiver.unresolved && dot(toward, toward) > 0;
     if (offset) // a quarter as many points over the source suffice for where it is seen
         exact_end(p, q, pp, pq, std::max(4, count / 4), source);
     if (set_exact_form_factor(link, receiver, offset ? &source : nullptr))

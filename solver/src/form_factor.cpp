@@ -42,6 +42,21 @@ double form_factor_point_polygon(const Vec3& x, const Vec3& n, const Vec3* poly,
     return std::abs(sum) / (2.0 * k_pi);
 }
 
+// Cloned for AVX2 (four points a step), chosen at load time. Not FMA: the clones then round
+// alike, and results do not depend on the machine.
+__attribute__((target_clones("avx2", "default"))) void
+add_contour_terms(const Vec3& a, const Vec3& b, const Vec3& n, ContourPoints& points) {
+    const Vec3 a_ = a, b_ = b, n_ = n; // copies: nothing the loop writes aliases them
+    const std::size_t m = points.size();
+    const double* __restrict x = points.x.data();
+    const double* __restrict y = points.y.data();
+    const double* __restrict z = points.z.data();
+    double* __restrict sum = points.sum.data();
+    for (std::size_t i = 0; i < m; ++i)
+        sum[i] += contour_term(a_.x - x[i], a_.y - y[i], a_.z - z[i], b_.x - x[i], b_.y - y[i],
+                               b_.z - z[i], n_);
+}
+
 double solid_angle_triangle(const Vec3& p, const std::array<Vec3, 3>& tri) {
     Vec3 a = tri[0] - p, b = tri[1] - p, c = tri[2] - p;
     double la = length(a), lb = length(b), lc = length(c);

@@ -254,25 +254,32 @@ void LinkSet::merge_collinear(const std::vector<BoundaryEdge>& edges,
             emit(i, i);
 }
 
-double LinkSet::point_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const Plane& plane,
-                                  bool& unresolved) const {
-    const double eps = 1e-9 * h_.diagonal;
-    if (dot(plane.n, x) - plane.d <= eps)
-        return 0.0; // behind the source's plane: it radiates the other way
+bool LinkSet::sees_whole(const Vec3& x, const Vec3& n, NodeRef p) const {
+    bool in_front = true;
+    for_each_corner(p, [&](const Vec3& v) { in_front = in_front && dot(v - x, n) >= 0; });
+    return in_front;
+}
+
+template <typename Fn> void LinkSet::for_each_contour_edge(NodeRef p, Fn&& fn) const {
+    if (!is_cluster(p)) {
+        const auto& t = h_.triangle[p];
+        fn(t[0], t[1]);
+        fn(t[1], t[2]);
+        fn(t[2], t[0]);
+        return;
+    }
+    const std::uint32_t c = cluster_index(p);
+    for (std::uint32_t k = boundary_begin_[c]; k < boundary_begin_[c + 1]; ++k) {
+        const ContourEdge& e = boundary_[k];
+        fn(h_.triangle[e.from_root][e.from], h_.triangle[e.to_root][e.to]);
+    }
+}
+
+double LinkSet::cut_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const Plane& plane,
+                                bool& unresolved) const {
     if (!is_cluster(p))
         return form_factor_point_triangle(x, n, h_.triangle[p]);
     const std::uint32_t c = cluster_index(p);
-    bool in_front = true;
-    for_each_corner(p, [&](const Vec3& v) { in_front = in_front && dot(v - x, n) >= 0; });
-    if (in_front) { // no clipping: the contour of the union
-        double sum = 0;
-        for (std::uint32_t k = boundary_begin_[c]; k < boundary_begin_[c + 1]; ++k) {
-            const ContourEdge& e = boundary_[k];
-            sum +=
-                contour_term(x, n, h_.triangle[e.from_root][e.from], h_.triangle[e.to_root][e.to]);
-        }
-        return std::abs(sum) / (2.0 * k_pi);
-    }
     if (root_end_[c] - root_begin_[c] > k_clip_roots) {
         unresolved = true;
         return 0.0;
@@ -560,15 +567,38 @@ int LinkSet::exact_point_count(NodeRef q, NodeRef p, const Plane& pp) const {
 void LinkSet::exact_end(NodeRef q, NodeRef p, const Plane& pq, const Plane& pp, int count,
                         ExactEnd& end) const {
     receiver_points(q, count, end.points);
-    end.values.clear();
+    end.values.assign(end.points.size(), 0.0);
+    end.unresolved = false;
+    // Points that see all of p take the contour sum of its boundary, edge by edge over the
+    // points at once (add_contour_terms); the rest are cut by their tangent planes.
+    thread_local ContourPoints whole;
+    thread_local std::vector<std::uint32_t> whole_index;
+    whole.clear();
+    whole_index.clear();
+    const double eps = 1e-9 * h_.diagonal;
+    for (std::size_t k = 0; k < end.points.size(); ++k) {
+        const Vec3& x = end.points[k].x;
+        if (dot(pp.n, x) - pp.d <= eps)
+            continue; // behind the source's plane: it radiates the other way
+        if (sees_whole(x, pq.n, p)) {
+            whole.push_back(x);
+            whole_index.push_back(std::uint32_t(k));
+        } else {
+            end.values[k] = cut_form_factor(x, pq.n, p, pp, end.unresolved);
+        }
+    }
+    if (!whole_index.empty()) {
+        for_each_contour_edge(
+            p, [&](const Vec3& a, const Vec3& b) { add_contour_terms(a, b, pq.n, whole); });
+        for (std::size_t j = 0; j < whole_index.size(); ++j)
+            end.values[whole_index[j]] = std::abs(whole.sum[j]) / (2.0 * k_pi);
+    }
     end.f = 0;
     end.lo = std::numeric_limits<double>::infinity();
     end.hi = 0;
-    end.unresolved = false;
-    for (const WeightedPoint& x : end.points) {
-        const double fx = point_form_factor(x.x, pq.n, p, pp, end.unresolved);
-        end.values.push_back(fx);
-        end.f += x.w * fx;
+    for (std::size_t k = 0; k < end.points.size(); ++k) {
+        const double fx = end.values[k];
+        end.f += end.points[k].w * fx;
         end.lo = std::min(end.lo, fx);
         end.hi = std::max(end.hi, fx);
     }

@@ -350,10 +350,16 @@ private:
     /// as one.
     void merge_collinear(const std::vector<BoundaryEdge>& edges,
                          std::vector<ContourEdge>& out) const;
-    /// F from a point \p x of normal \p n to planar end \p p of plane \p plane; sets
-    /// \p unresolved where p is a cluster too large to clip to x's hemisphere.
-    double point_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const Plane& plane,
-                             bool& unresolved) const;
+    /// Whether all of planar end \p p lies in front of the tangent plane (normal \p n) of
+    /// \p x: its form factor from x is then the contour sum of p's boundary alone.
+    bool sees_whole(const Vec3& x, const Vec3& n, NodeRef p) const;
+    /// Calls \p fn(a, b) for each edge of p's boundary (a face cluster's straight runs).
+    template <typename Fn> void for_each_contour_edge(NodeRef p, Fn&& fn) const;
+    /// F from a point \p x of normal \p n, in front of planar end \p p of plane \p plane,
+    /// where x's tangent plane cuts p; sets \p unresolved where p is a cluster too large to
+    /// clip to x's hemisphere.
+    double cut_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const Plane& plane,
+                           bool& unresolved) const;
     /// Area centroid of a node.
     Vec3 node_centroid(NodeRef n) const;
     /// The unit direction from face cluster \p from's centroid toward \p toward's, in

@@ -86,14 +86,23 @@ using PointValues = std::array<double, k_max_quadrature_points>;
 // plane); returns their mean.
 double point_form_factors(const Quadrature& quad, const OrientedTriangle& a,
                           const OrientedTriangle& b, PointValues& f_point) {
-    double sum = 0;
+    std::array<Vec3, k_max_quadrature_points> front;
+    std::array<std::size_t, k_max_quadrature_points> index;
+    std::size_t m = 0;
     for (std::size_t q = 0; q < quad.count; ++q) {
         f_point[q] = 0;
         if (dot(quad.point[q] - b.v[0], b.n) <= 0)
             continue; // this part of a lies behind b's plane
-        f_point[q] = form_factor_point_triangle(quad.point[q], a.n, b.v);
-        sum += f_point[q];
+        front[m] = quad.point[q];
+        index[m++] = q;
     }
+    PointValues f;
+    form_factors_point_triangle(front.data(), m, a.n, b.v, f.data());
+    for (std::size_t i = 0; i < m; ++i)
+        f_point[index[i]] = f[i];
+    double sum = 0;
+    for (std::size_t q = 0; q < quad.count; ++q)
+        sum += f_point[q];
     return sum / double(quad.count);
 }
 

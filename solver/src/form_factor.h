@@ -107,6 +107,13 @@ inline double form_factor_point_triangle(const Vec3& x, const Vec3& n,
     return form_factor_point_polygon(x, n, tri.data(), 3);
 }
 
+/// \brief Form factors from points \p x[0, count) sharing the tangent-plane normal \p n to
+///        triangle \p tri, into \p out: each as form_factor_point_triangle gives it, with the
+///        points that see all of the triangle summed over its edges at once
+///        (add_contour_terms).
+void form_factors_point_triangle(const Vec3* x, std::size_t count, const Vec3& n,
+                                 const std::array<Vec3, 3>& tri, double* out);
+
 /// \brief Sutherland–Hodgman: the part of polygon \p poly where dot(p − x, n) ≥ 0, written to
 ///        \p out (count + 1 points suffice for a convex polygon); returns its point count.
 std::size_t clip_to_half_space(const Vec3& x, const Vec3& n, const Vec3* poly, std::size_t count,

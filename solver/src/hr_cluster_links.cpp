@@ -74,6 +74,8 @@ constexpr double k_max_calibration = 4.0;
 /// the elements' indirect irradiance 2.70 / 2.63 / 2.61 / 2.61 % off, its mean 0.9910 /
 /// 0.9923 / 0.9927 / 0.9927 of the reference's (the bias of links taken as dark).
 constexpr int k_max_cluster_rays = 64;
+/// An all-blocked link's rays traced to their first hits before the rest (certified_blocked).
+constexpr std::size_t k_first_certifying_rays = 4;
 /// Such a link gets rays until its uncertainty is this many times below the threshold: a link
 /// taken as occluded loses what light it carries, always in the same direction.
 constexpr double k_resample_margin = 16.0;
@@ -355,7 +357,7 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
         g_open *= std::min(k_max_calibration, open * true_open / (g_open * cosines_open));
     const double total = before + double(segments.size());
     if (open == 0 && !hits.empty()) {
-        if (certified_blocked(link.receiver, link.source, segments, hits)) {
+        if (certified_blocked(link.receiver, link.source, segments, hits, true)) {
             link.rays = std::uint16_t(total);
             link.g = 0.0f; // carries nothing: the refinement drops it
             link.set_visible(0.0);
@@ -429,14 +431,25 @@ bool LinkSet::shaft_end(NodeRef n, NodeRef other, std::uint32_t plane, double si
 }
 
 bool LinkSet::certified_blocked(NodeRef q, NodeRef p, std::vector<Segment>& segments,
-                                std::vector<std::int32_t>& hits) const {
-    if (certified_occluded(q, p, hits))
+                                std::vector<std::int32_t>& hits, bool traced) const {
+    // The rays' first hits name the planes to try, a few rays before the rest: one wall
+    // blocks most dark pairs, and the first rays' hits name it. Any plane that blocks proves
+    // the pair dark, so the answer does not depend on the order.
+    const std::size_t n = segments.size(), few = std::min(n, k_first_certifying_rays);
+    auto trace_and_try = [&](std::size_t begin, std::size_t end) {
+        if (begin == end)
+            return false;
+        const std::span<std::int32_t> part(hits.data() + begin, end - begin);
+        visibility_.first_hit(std::span<const Segment>(segments).subspan(begin, end - begin), part);
+        return certified_occluded(q, p, part);
+    };
+    hits.resize(n);
+    if (traced ? certified_occluded(q, p, hits) : trace_and_try(0, few) || trace_and_try(few, n))
         return true;
     // The first hits from the source's end: a wall behind its furniture.
     for (Segment& s : segments)
         s = {s.origin + s.direction, s.direction * -1.0f, s.tnear, s.tfar};
-    visibility_.first_hit(segments, hits);
-    return certified_occluded(q, p, hits);
+    return trace_and_try(0, few) || trace_and_try(few, n);
 }
 
 bool LinkSet::centres_occluded(NodeRef q, NodeRef p) const {
@@ -445,11 +458,19 @@ bool LinkSet::centres_occluded(NodeRef q, NodeRef p) const {
     const Vec3 cq = node_centre(q), cp = node_centre(p);
     // Off the ends themselves: an element's centre lies on its own plane.
     constexpr float lo = 1e-4f, hi = 1.0f - 1e-4f;
+    // From q's end, then from p's where what q's end hits first does not block: a segment
+    // open one way is open the other.
     const Segment both[2] = {{Vec3f(cq), Vec3f(cp - cq), lo, hi},
                              {Vec3f(cp), Vec3f(cq - cp), lo, hi}};
-    std::int32_t hits[2];
-    visibility_.first_hit(both, hits);
-    return (hits[0] != -1 || hits[1] != -1) && certified_occluded(q, p, hits);
+    for (const Segment& s : both) {
+        std::int32_t hit = -1;
+        visibility_.first_hit({&s, 1}, {&hit, 1});
+        if (hit == -1)
+            return false;
+        if (certified_occluded(q, p, {&hit, 1}))
+            return true;
+    }
+    return false;
 }
 
 bool LinkSet::certified_occluded(NodeRef q, NodeRef p,

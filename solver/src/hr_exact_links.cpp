@@ -719,9 +719,7 @@ void LinkSet::exact_visibility(ClusterLink& link, const Plane& pq, const Plane& 
     }
     link.rays = std::uint16_t(segments.size());
     if (open_rays == 0) {
-        hits.resize(segments.size());
-        visibility_.first_hit(segments, hits);
-        if (certified_blocked(q, p, segments, hits)) {
+        if (certified_blocked(q, p, segments, hits, false)) {
             link.g = 0.0f; // carries nothing: the refinement drops it
             link.set_visible(0.0);
             return;

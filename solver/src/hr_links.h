@@ -256,13 +256,14 @@ private:
     /// Whether rays between nodes \p q and \p p that hit the elements \p hits first (-1: none,
     /// -2: unnamed) met a plane that blocks every segment between the two (occluders.h).
     bool certified_occluded(NodeRef q, NodeRef p, std::span<const std::int32_t> hits) const;
-    /// Whether rays \p segments from q to p, all blocked and first hitting \p hits, are
-    /// proved dark by a plane: from q's end, else traced again from p's (which overwrites
-    /// both arrays).
+    /// Whether rays \p segments from q to p, all blocked, are proved dark by a plane they
+    /// first hit: from q's end (\p hits where \p traced, else traced into it), else traced
+    /// again from p's (which overwrites both arrays).
     bool certified_blocked(NodeRef q, NodeRef p, std::vector<Segment>& segments,
-                           std::vector<std::int32_t>& hits) const;
-    /// The same for the segment between their centres, traced both ways (two rays): a proof
-    /// that a pair is dark before its form factor is computed or its parts linked.
+                           std::vector<std::int32_t>& hits, bool traced) const;
+    /// The same for the segment between their centres, traced one way and where need be the
+    /// other (one or two rays): a proof that a pair is dark before its form factor is
+    /// computed or its parts linked.
     bool centres_occluded(NodeRef q, NodeRef p) const;
     /// Whether node \p n (as far as it may exchange light with \p other) lies on side \p side
     /// (±1) of occluder plane \p plane, every surface of it facing the other side strictly so

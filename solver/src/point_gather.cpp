@@ -5,6 +5,8 @@
 #include "point_gather.h"
 
 #include <cmath>
+#include <span>
+#include <vector>
 
 #include "core/rng.h"
 #include "form_factor.h"
@@ -14,41 +16,66 @@ namespace penumbra::solver {
 
 namespace {
 
-// Visible fraction of triangle s from p. Four probe rays (the centroid, and the corners
-// pulled 2 % of the way to it) decide where they agree, as the hierarchical links'
-// probes do; where they disagree, the triangle is in p's penumbra and 4 × \p rays rays on a
-// jittered grid (stratified through the area-preserving square-to-triangle map) estimate it.
-double triangle_visibility(const ElementGeometry& geo, const VisibilityQuery& visibility,
-                           const GatherPoint& p, std::uint32_t s, int rays, Pcg32& rng) {
-    // As in element_rows.cpp: lift both ends off both planes where they meet at an angle.
+// Where the rays from p toward triangle s start, and the lift their targets on s take: as in
+// element_rows.cpp, both ends are lifted off both planes where they meet at an angle.
+struct TriangleRays {
+    Vec3 from, lift;
+};
+TriangleRays rays_toward(const ElementGeometry& geo, const GatherPoint& p, std::uint32_t s) {
     const double cross_weight = geo.offset * (1.0 - std::abs(dot(p.normal, geo.normal[s])));
-    const Vec3 from = p.position + p.normal * geo.offset + geo.normal[s] * cross_weight;
-    const Vec3 lift = geo.normal[s] * geo.offset + p.normal * cross_weight;
-    auto open_fraction = [&](const std::vector<Vec3>& targets) {
-        std::vector<Segment> segments(targets.size());
-        for (std::size_t i = 0; i < targets.size(); ++i)
-            segments[i] = {Vec3f(from), Vec3f(targets[i] + lift - from), 0.0f, 1.0f};
-        std::vector<std::uint8_t> blocked(segments.size());
+    return {p.position + p.normal * geo.offset + geo.normal[s] * cross_weight,
+            geo.normal[s] * geo.offset + p.normal * cross_weight};
+}
+
+// Visible fractions of triangles \p sources from p, into \p out. Four probe rays each (the
+// centroid, and the corners pulled 2 % of the way to it), all traced at once, decide where
+// they agree, as the hierarchical links' probes do; where they disagree, the triangle is in
+// p's penumbra and 4 × \p rays rays on a jittered grid (stratified through the
+// area-preserving square-to-triangle map) estimate it, triangle by triangle in order.
+void triangle_visibilities(const ElementGeometry& geo, const VisibilityQuery& visibility,
+                           const GatherPoint& p, std::span<const std::uint32_t> sources, int rays,
+                           Pcg32& rng, std::vector<double>& out) {
+    thread_local std::vector<Segment> segments;
+    thread_local std::vector<std::uint8_t> blocked;
+    segments.clear();
+    for (const std::uint32_t s : sources) {
+        const TriangleRays r = rays_toward(geo, p, s);
+        const auto& t = geo.triangle[s];
+        const Vec3 c = (t[0] + t[1] + t[2]) / 3.0;
+        for (const Vec3& target :
+             {c, t[0] * 0.98 + c * 0.02, t[1] * 0.98 + c * 0.02, t[2] * 0.98 + c * 0.02})
+            segments.push_back({Vec3f(r.from), Vec3f(target + r.lift - r.from), 0.0f, 1.0f});
+    }
+    blocked.resize(segments.size());
+    visibility.occluded(segments, blocked);
+    out.resize(sources.size());
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+        int open = 0;
+        for (std::size_t k = 4 * i; k < 4 * i + 4; ++k)
+            open += blocked[k] ? 0 : 1;
+        out[i] = double(open) / 4.0;
+    }
+    const int side = int(std::ceil(std::sqrt(double(4 * std::max(rays, 1)))));
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+        if (out[i] == 0.0 || out[i] == 1.0)
+            continue;
+        const std::uint32_t s = sources[i];
+        const TriangleRays r = rays_toward(geo, p, s);
+        const auto& t = geo.triangle[s];
+        segments.clear();
+        for (int a = 0; a < side; ++a)
+            for (int b = 0; b < side; ++b) {
+                const Vec3 target = sample_triangle(t, (a + rng.next_double()) / side,
+                                                    (b + rng.next_double()) / side);
+                segments.push_back({Vec3f(r.from), Vec3f(target + r.lift - r.from), 0.0f, 1.0f});
+            }
+        blocked.resize(segments.size());
         visibility.occluded(segments, blocked);
         std::size_t open = 0;
         for (auto b : blocked)
             open += b ? 0 : 1;
-        return double(open) / double(segments.size());
-    };
-    const auto& t = geo.triangle[s];
-    const Vec3 c = (t[0] + t[1] + t[2]) / 3.0;
-    const double probe =
-        open_fraction({c, t[0] * 0.98 + c * 0.02, t[1] * 0.98 + c * 0.02, t[2] * 0.98 + c * 0.02});
-    if (probe == 0.0 || probe == 1.0)
-        return probe;
-    const int side = int(std::ceil(std::sqrt(double(4 * std::max(rays, 1)))));
-    std::vector<Vec3> targets;
-    targets.reserve(std::size_t(side * side));
-    for (int i = 0; i < side; ++i)
-        for (int j = 0; j < side; ++j)
-            targets.push_back(sample_triangle(t, (i + rng.next_double()) / side,
-                                              (j + rng.next_double()) / side));
-    return open_fraction(targets);
+        out[i] = double(open) / double(segments.size());
+    }
 }
 
 // Form factor from p to element s if s faces p, else 0.
@@ -65,13 +92,20 @@ Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
                   std::uint64_t seed, const std::vector<std::uint32_t>* emitters) {
     RgbD sum;
     Pcg32 rng = Pcg32::for_stream(p.purpose, p.id, 1, 0, seed);
+    thread_local std::vector<std::uint32_t> facing;
+    thread_local std::vector<double> f, visible;
+    facing.clear();
+    f.clear();
     for (std::uint32_t s : emitters ? *emitters : sources.emitters) {
-        double f = facing_form_factor(geo, p, s);
-        if (f <= 0)
+        const double fs = facing_form_factor(geo, p, s);
+        if (fs <= 0)
             continue;
-        f *= triangle_visibility(geo, visibility, p, s, rays_per_source, rng);
-        sum += RgbD(sources.emission[s]) * f;
+        facing.push_back(s);
+        f.push_back(fs);
     }
+    triangle_visibilities(geo, visibility, p, facing, rays_per_source, rng, visible);
+    for (std::size_t i = 0; i < facing.size(); ++i)
+        sum += RgbD(sources.emission[facing[i]]) * (f[i] * visible[i]);
     for (const PointLight& light : sources.lights) {
         Vec3 d = light.position - p.position;
         double dist2 = dot(d, d);
@@ -108,15 +142,20 @@ Rgb gather_elements(const ElementGeometry& geo, const std::vector<Rgb>& exitance
                     std::uint64_t seed) {
     RgbD sum;
     Pcg32 rng = Pcg32::for_stream(p.purpose, p.id, 2, 0, seed);
+    std::vector<std::uint32_t> facing;
+    std::vector<double> f, visible;
     for (std::uint32_t s = 0; s < geo.size(); ++s) {
         if (exitance[s].is_black())
             continue;
-        double f = facing_form_factor(geo, p, s);
-        if (f <= 0)
+        const double fs = facing_form_factor(geo, p, s);
+        if (fs <= 0)
             continue;
-        f *= triangle_visibility(geo, visibility, p, s, rays_per_element, rng);
-        sum += RgbD(exitance[s]) * f;
+        facing.push_back(s);
+        f.push_back(fs);
     }
+    triangle_visibilities(geo, visibility, p, facing, rays_per_element, rng, visible);
+    for (std::size_t i = 0; i < facing.size(); ++i)
+        sum += RgbD(exitance[facing[i]]) * (f[i] * visible[i]);
     return Rgb(float(sum.r), float(sum.g), float(sum.b));
 }
 

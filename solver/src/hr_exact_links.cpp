@@ -374,17 +374,16 @@ double LinkSet::root_form_factors(const Vec3& x, const Vec3& n, std::uint32_t be
     return sum;
 }
 
-Rgb LinkSet::exact_source_radiosity(const ClusterLink& link, const std::vector<Lobes>& lobes,
-                                    const std::vector<Slope>& gradient,
-                                    const std::vector<Rgb>& element) const {
-    if (!is_cluster(link.source))
-        return element[link.source];
-    const std::uint32_t c = cluster_index(link.source);
-    const Rgb mean = lobe_projection(lobes[c], tree_->normal[c]) * float(1.0 / tree_->area[c]);
+Rgb LinkSet::face_mean(std::uint32_t c, const std::vector<Lobes>& lobes) const {
+    return lobe_projection(lobes[c], tree_->normal[c]) * float(1.0 / tree_->area[c]);
+}
+
+Rgb LinkSet::exact_source_radiosity(const ClusterLink& link, const Rgb& mean,
+                                    const std::vector<Slope>& gradient) const {
     if (gradient.empty() || link.d.y == 0)
         return mean;
-    const Rgb seen =
-        mean + slope_along(gradient[c], exact_source_direction(link) * double(link.d.y));
+    const Rgb seen = mean + slope_along(gradient[cluster_index(link.source)],
+                                        exact_source_direction(link) * double(link.d.y));
     return Rgb(std::max(seen.r, 0.0f), std::max(seen.g, 0.0f), std::max(seen.b, 0.0f));
 }
 

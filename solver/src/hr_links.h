@@ -169,12 +169,13 @@ public:
                 const std::function<void(const RefinePass&)>& on_pass = {});
 
     std::span<const Link> links() const { return links_.span(); }
-    /// The radiosity an exact link's source sends it: an element's own (\p element); a face
-    /// cluster's mean (from \p lobes) plus its \p gradient (planar_gradients; empty for
-    /// none) times the link's offset (ClusterLink::d.y), at least 0.
-    Rgb exact_source_radiosity(const ClusterLink& link, const std::vector<Lobes>& lobes,
-                               const std::vector<Slope>& gradient,
-                               const std::vector<Rgb>& element) const;
+    /// The mean radiosity of face cluster \p c from its exitance \p lobes.
+    Rgb face_mean(std::uint32_t c, const std::vector<Lobes>& lobes) const;
+    /// The radiosity an exact link from a face cluster sends: its \p mean (face_mean) plus
+    /// its \p gradient (planar_gradients; empty for none) times the link's offset
+    /// (ClusterLink::d.y), at least 0. (An element source sends its own radiosity.)
+    Rgb exact_source_radiosity(const ClusterLink& link, const Rgb& mean,
+                               const std::vector<Slope>& gradient) const;
     /// The gradient (per metre, in its plane) of the form factor of an exact link over its
     /// cluster receiver, which takes F + gradient · (x − centroid); zero for an element.
     Vec3 exact_slope(const ClusterLink& link) const;

@@ -231,8 +231,9 @@ TEST(ExactLinks, SourceSendsTheRadiosityItsReceiverSees) {
     solver::pull_clusters(pair.tree, *pair.h, b, pair.cv);
     const ClusterLink link = pair.links->exact_link(pair.a, pair.b);
     ASSERT_TRUE(link.exact);
-    const double sent =
-        pair.links->exact_source_radiosity(link, pair.cv.exitance, pair.cv.gradient, b).g;
+    const Rgb source_mean =
+        pair.links->face_mean(solver::cluster_index(link.source), pair.cv.exitance);
+    const double sent = pair.links->exact_source_radiosity(link, source_mean, pair.cv.gradient).g;
     double area = 0, mean = 0;
     for (std::uint32_t r : pair.roots(pair.b)) {
         mean += b[r].g * pair.h->area[r];
@@ -277,8 +278,8 @@ TEST(ExactLinks, PairLinkedBothWaysIsMadeAsItsTwoLinks) {
         EXPECT_NEAR(l.d.y, s.d.y, 0.01);
         EXPECT_EQ(l.v_bits, s.v_bits);
         EXPECT_EQ(l.rays, s.rays);
-        const double sent =
-            pair.links->exact_source_radiosity(l, pair.cv.exitance, pair.cv.gradient, b).g;
+        const Rgb mean = pair.links->face_mean(solver::cluster_index(l.source), pair.cv.exitance);
+        const double sent = pair.links->exact_source_radiosity(l, mean, pair.cv.gradient).g;
         const double truth = pair.gathered(l.receiver, l.source, b);
         std::printf("pair: %s sends %.5f, gather %.5f\n", k == 0 ? "wall" : "floor", sent, truth);
         EXPECT_NEAR(sent, truth, 0.01 * truth);

@@ -434,17 +434,21 @@ bool LinkSet::certified_blocked(NodeRef q, NodeRef p, std::vector<Segment>& segm
                                 std::vector<std::int32_t>& hits, bool traced) const {
     // The rays' first hits name the planes to try, a few rays before the rest: one wall
     // blocks most dark pairs, and the first rays' hits name it. Any plane that blocks proves
-    // the pair dark, so the answer does not depend on the order.
+    // the pair dark, so the answer does not depend on the order; one that failed fails again
+    // (the test depends on q, p and the plane alone), so each is tried once.
+    thread_local std::vector<std::uint32_t> tried;
+    tried.clear();
     const std::size_t n = segments.size(), few = std::min(n, k_first_certifying_rays);
     auto trace_and_try = [&](std::size_t begin, std::size_t end) {
         if (begin == end)
             return false;
         const std::span<std::int32_t> part(hits.data() + begin, end - begin);
         visibility_.first_hit(std::span<const Segment>(segments).subspan(begin, end - begin), part);
-        return certified_occluded(q, p, part);
+        return certified_occluded(q, p, part, tried);
     };
     hits.resize(n);
-    if (traced ? certified_occluded(q, p, hits) : trace_and_try(0, few) || trace_and_try(few, n))
+    if (traced ? certified_occluded(q, p, hits, tried)
+               : trace_and_try(0, few) || trace_and_try(few, n))
         return true;
     // The first hits from the source's end: a wall behind its furniture.
     for (Segment& s : segments)
@@ -462,25 +466,25 @@ bool LinkSet::centres_occluded(NodeRef q, NodeRef p) const {
     // open one way is open the other.
     const Segment both[2] = {{Vec3f(cq), Vec3f(cp - cq), lo, hi},
                              {Vec3f(cp), Vec3f(cq - cp), lo, hi}};
+    thread_local std::vector<std::uint32_t> tried;
+    tried.clear();
     for (const Segment& s : both) {
         std::int32_t hit = -1;
         visibility_.first_hit({&s, 1}, {&hit, 1});
         if (hit == -1)
             return false;
-        if (certified_occluded(q, p, {&hit, 1}))
+        if (certified_occluded(q, p, {&hit, 1}, tried))
             return true;
     }
     return false;
 }
 
-bool LinkSet::certified_occluded(NodeRef q, NodeRef p,
-                                 std::span<const std::int32_t> hits) const {
+bool LinkSet::certified_occluded(NodeRef q, NodeRef p, std::span<const std::int32_t> hits,
+                                 std::vector<std::uint32_t>& tried) const {
     if (occluders_.size() == 0)
         return false;
     // Called for most new pairs: no allocation per call.
-    thread_local std::vector<std::uint32_t> tried;
     thread_local std::vector<Vec3> a, b;
-    tried.clear();
     const Vec3 cq = node_centre(q), cp = node_centre(p);
     for (const std::int32_t e : hits) {
         if (e < 0 || std::size_t(e) >= h_.root_count)

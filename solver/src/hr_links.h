@@ -255,8 +255,10 @@ private:
     // Clusters (hr_cluster_links.cpp).
     ClusterLink make_cluster_link(NodeRef receiver, NodeRef source) const;
     /// Whether rays between nodes \p q and \p p that hit the elements \p hits first (-1: none,
-    /// -2: unnamed) met a plane that blocks every segment between the two (occluders.h).
-    bool certified_occluded(NodeRef q, NodeRef p, std::span<const std::int32_t> hits) const;
+    /// -2: unnamed) met a plane that blocks every segment between the two (occluders.h);
+    /// planes in \p tried are not tried again, and those tried are added to it.
+    bool certified_occluded(NodeRef q, NodeRef p, std::span<const std::int32_t> hits,
+                            std::vector<std::uint32_t>& tried) const;
     /// Whether rays \p segments from q to p, all blocked, are proved dark by a plane they
     /// first hit: from q's end (\p hits where \p traced, else traced into it), else traced
     /// again from p's (which overwrites both arrays).

@@ -162,7 +162,7 @@ void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& c
         level_direct.assign(tree.size(), Rgb{});
         level_indirect.assign(tree.size(), Rgb{});
     }
-    for (std::size_t c = 0; c < tree.size(); ++c) { // parents before children
+    for_each_cluster_by_level(cluster_levels(tree), false, [&](std::uint32_t c) {
         down_direct[c] = cv.gathered_direct[c];
         down_indirect[c] = cv.gathered_indirect[c];
         if (tree.parent[c] >= 0) {
@@ -196,7 +196,7 @@ void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& c
                     level_indirect[c] + slope_along(gradient_indirect[c], offset);
             }
         }
-    }
+    });
 }
 
 void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,
@@ -204,12 +204,13 @@ void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vecto
     pull_lobes(tree, h, b, cv.exitance);
     planar_gradients(tree, h, b, cv.gradient);
     cv.peak.assign(tree.size(), 0.0f);
-    for (std::size_t c = tree.size(); c-- > 0;) // children after parents
+    for_each_cluster_by_level(cluster_levels(tree), true, [&](std::uint32_t c) {
         for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
             const NodeRef child = tree.children[k];
             cv.peak[c] = std::max(cv.peak[c], is_cluster(child) ? cv.peak[cluster_index(child)]
                                                                 : b[child].max_component());
         }
+    });
 }
 
 void weigh_departures(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& b,

@@ -202,10 +202,31 @@ ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size) {
     return tree;
 }
 
+ClusterLevels cluster_levels(const ClusterTree& tree) {
+    std::vector<std::uint32_t> depth(tree.size(), 0);
+    std::uint32_t deepest = 0;
+    for (std::size_t c = 0; c < tree.size(); ++c) { // parents before children
+        if (tree.parent[c] >= 0)
+            depth[c] = depth[std::size_t(tree.parent[c])] + 1;
+        deepest = std::max(deepest, depth[c]);
+    }
+    ClusterLevels levels;
+    levels.begin.assign(tree.size() > 0 ? deepest + 2 : 1, 0);
+    for (std::uint32_t d : depth)
+        ++levels.begin[d + 1];
+    for (std::size_t d = 1; d < levels.begin.size(); ++d)
+        levels.begin[d] += levels.begin[d - 1];
+    levels.order.resize(tree.size());
+    std::vector<std::uint32_t> next(levels.begin.begin(), levels.begin.end() - 1);
+    for (std::size_t c = 0; c < tree.size(); ++c)
+        levels.order[next[depth[c]]++] = std::uint32_t(c);
+    return levels;
+}
+
 void pull_lobes(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& value,
                 std::vector<Lobes>& out) {
     out.assign(tree.size(), Lobes{});
-    for (std::size_t c = tree.size(); c-- > 0;) { // children after parents
+    for_each_cluster_by_level(cluster_levels(tree), true, [&](std::uint32_t c) {
         Lobes& sum = out[c];
         for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
             const NodeRef child = tree.children[k];
@@ -215,7 +236,7 @@ void pull_lobes(const ClusterTree& tree, const Hierarchy& h, const std::vector<R
             for (std::size_t l = 0; l < 6; ++l)
                 sum[l] += part[l];
         }
-    }
+    });
 }
 
 // Moments about the origin, summed bottom-up in double (a cluster's small spread about its
@@ -243,10 +264,9 @@ void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::ve
     out.assign(tree.size(), Slope{});
     if (departure)
         departure->assign(tree.size(), 0.0f);
-    std::vector<std::uint32_t> stack;
-    for (std::size_t c = tree.size(); c-- > 0;) { // children after parents
+    for_each_cluster_by_level(cluster_levels(tree), true, [&](std::uint32_t c) {
         if (!tree.planar[c])
-            continue;
+            return;
         Moments& sum = m[c];
         for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
             const NodeRef child = tree.children[k];
@@ -270,7 +290,7 @@ void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::ve
             sum.add(root);
         }
         if (!(sum.a > 0))
-            continue;
+            return;
         const Vec3 mean = sum.ax / sum.a;
         // Covariance of the centroids and covariance of value with position, about the mean.
         const double cov[3][3] = {
@@ -300,10 +320,11 @@ void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::ve
             out[c][axis] =
                 Rgb(float(gradient[0][axis]), float(gradient[1][axis]), float(gradient[2][axis]));
         if (!departure)
-            continue;
+            return;
         // The fit at every root below (a face cluster holds at most one item's roots).
         double worst = 0;
-        stack.assign(1, std::uint32_t(c));
+        thread_local std::vector<std::uint32_t> stack;
+        stack.assign(1, c);
         while (!stack.empty()) {
             const std::uint32_t d = stack.back();
             stack.pop_back();
@@ -323,7 +344,7 @@ void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::ve
             }
         }
         (*departure)[c] = float(2.0 * worst);
-    }
+    });
 }
 
 } // namespace penumbra::solver

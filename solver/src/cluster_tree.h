@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/parallel.h"
 #include "core/rgb.h"
 #include "core/vec.h"
 #include "hierarchy.h"
@@ -93,6 +94,28 @@ struct ClusterTree {
 ///        sets of whole items, then each item's roots, until a cluster holds at most
 ///        \p leaf_size roots. Deterministic.
 ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size = 8);
+
+/// \brief The clusters of \p tree by depth: those of depth d are
+///        order[begin[d] .. begin[d + 1]) (parents precede their children in index order).
+struct ClusterLevels {
+    std::vector<std::uint32_t> order, begin;
+};
+ClusterLevels cluster_levels(const ClusterTree& tree);
+
+/// \brief Calls \p fn(c) for every cluster, children before their parents (\p up) or
+///        parents before their children: in parallel over the clusters of each depth, which
+///        read only their children's (their parent's) results. The passes over the whole tree
+///        each sweep made were a third of the sweeps' time, on one core.
+template <typename Fn>
+void for_each_cluster_by_level(const ClusterLevels& levels, bool up, Fn&& fn) {
+    const std::size_t depths = levels.begin.size() - 1;
+    for (std::size_t i = 0; i < depths; ++i) {
+        const std::size_t d = up ? depths - 1 - i : i;
+        const std::uint32_t first = levels.begin[d];
+        parallel_for_index(levels.begin[d + 1] - first, 64,
+                           [&](std::size_t k) { fn(levels.order[first + k]); });
+    }
+}
 
 /// \brief Per cluster, the summed lobes of its roots, root r carrying \p value[r] per unit
 ///        area (its radiosity for exitance lobes, 1 for area lobes). \p out is resized.

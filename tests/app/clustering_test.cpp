@@ -127,6 +127,33 @@ TEST(Clustering, LeafClustersArePlanarOnTessellatedOffices) {
         EXPECT_EQ(seen[r], 1) << "root " << r;
 }
 
+// The levels that the sweeps' passes over the tree run in parallel: every cluster once, each
+// level after its parents' (a parent's depth is one less), the top cluster alone first.
+TEST(Clustering, LevelsHoldEveryClusterBelowItsParent) {
+    bench::OfficeParams params;
+    params.rooms_x = 2;
+    params.rooms_y = 1;
+    params.tessellation = 3;
+    Scene scene = bench::office_floor(params);
+    bench::mesh_input_as_is(scene);
+    const RadiosityMesh mesh = mesher::build_mesh(scene, test::quiet_context());
+    const solver::Hierarchy h(mesh);
+    const solver::ClusterTree tree = solver::build_cluster_tree(h);
+    const solver::ClusterLevels levels = solver::cluster_levels(tree);
+    ASSERT_EQ(levels.order.size(), tree.size());
+    ASSERT_GE(levels.begin.size(), 3u); // the tree is more than one level deep
+    EXPECT_EQ(levels.begin[1] - levels.begin[0], 1u);
+    EXPECT_EQ(levels.order[0], 0u);
+    std::vector<int> depth(tree.size(), -1);
+    for (std::size_t d = 0; d + 1 < levels.begin.size(); ++d)
+        for (std::uint32_t k = levels.begin[d]; k < levels.begin[d + 1]; ++k) {
+            ASSERT_EQ(depth[levels.order[k]], -1) << "cluster " << levels.order[k] << " twice";
+            depth[levels.order[k]] = int(d);
+        }
+    for (std::size_t c = 1; c < tree.size(); ++c)
+        EXPECT_EQ(depth[c], depth[std::size_t(tree.parent[c])] + 1) << "cluster " << c;
+}
+
 // The links stay grouped by receiver and ordered by source (the in-place flag sort of
 // LinkSet::sort_and_index), with receiver_offsets() bounding each group, after linking the
 // roots and after a refinement that splits many of them.

@@ -60,11 +60,13 @@ public:
         std::lock_guard lock(mutex_);
         if (code_ == RTC_ERROR_NONE)
             return;
-        failed_.store(false, std::memory_order_relaxed);
+        // Cleared only once the message is made: were making it to throw (out of memory),
+        // the record would stay set and every later error be dropped.
         std::string text =
             fmt::format("Embree {} failed: {} ({})", call, message_, error_name(code_));
         code_ = RTC_ERROR_NONE;
         message_.clear();
+        failed_.store(false, std::memory_order_relaxed);
         throw ExternalError(text);
     }
 

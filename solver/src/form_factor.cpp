@@ -42,10 +42,15 @@ double form_factor_point_polygon(const Vec3& x, const Vec3& n, const Vec3* poly,
     return std::abs(sum) / (2.0 * k_pi);
 }
 
-// Cloned for AVX2 (four points a step), chosen at load time. Not FMA: the clones then round
-// alike, and results do not depend on the machine.
-__attribute__((target_clones("avx2", "default"))) void
-add_contour_terms(const Vec3& a, const Vec3& b, const Vec3& n, ContourPoints& points) {
+// On x86-64 (with ifunc), cloned for AVX2 (four points a step), chosen at load time. Not
+// FMA: the clones then round alike, and results do not depend on the machine.
+#if defined(__x86_64__) && defined(__linux__)
+#define PENUMBRA_CLONE_AVX2 __attribute__((target_clones("avx2", "default")))
+#else
+#define PENUMBRA_CLONE_AVX2
+#endif
+PENUMBRA_CLONE_AVX2 void add_contour_terms(const Vec3& a, const Vec3& b, const Vec3& n,
+                                           ContourPoints& points) {
     const Vec3 a_ = a, b_ = b, n_ = n; // copies: nothing the loop writes aliases them
     const std::size_t m = points.size();
     const double* __restrict x = points.x.data();

@@ -162,7 +162,7 @@ void push_clusters(const ClusterTree& tree, const Hierarchy& h, ClusterValues& c
         level_direct.assign(tree.size(), Rgb{});
         level_indirect.assign(tree.size(), Rgb{});
     }
-    for_each_cluster_by_level(cluster_levels(tree), false, [&](std::uint32_t c) {
+    for_each_cluster_by_level(tree, false, [&](std::uint32_t c) {
         down_direct[c] = cv.gathered_direct[c];
         down_indirect[c] = cv.gathered_indirect[c];
         if (tree.parent[c] >= 0) {
@@ -204,7 +204,7 @@ void pull_clusters(const ClusterTree& tree, const Hierarchy& h, const std::vecto
     pull_lobes(tree, h, b, cv.exitance);
     planar_gradients(tree, h, b, cv.gradient);
     cv.peak.assign(tree.size(), 0.0f);
-    for_each_cluster_by_level(cluster_levels(tree), true, [&](std::uint32_t c) {
+    for_each_cluster_by_level(tree, true, [&](std::uint32_t c) {
         for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
             const NodeRef child = tree.children[k];
             cv.peak[c] = std::max(cv.peak[c], is_cluster(child) ? cv.peak[cluster_index(child)]

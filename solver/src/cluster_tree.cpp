@@ -90,6 +90,28 @@ std::vector<std::vector<std::uint32_t>> planar_groups(const Hierarchy& h) {
     return groups;
 }
 
+// The clusters of \p tree by depth, for its levels.
+ClusterLevels cluster_levels(const ClusterTree& tree) {
+    std::vector<std::uint32_t> depth(tree.size(), 0);
+    std::uint32_t deepest = 0;
+    for (std::size_t c = 0; c < tree.size(); ++c) { // parents before children
+        if (tree.parent[c] >= 0)
+            depth[c] = depth[std::size_t(tree.parent[c])] + 1;
+        deepest = std::max(deepest, depth[c]);
+    }
+    ClusterLevels levels;
+    levels.begin.assign(tree.size() > 0 ? deepest + 2 : 1, 0);
+    for (std::uint32_t d : depth)
+        ++levels.begin[d + 1];
+    for (std::size_t d = 1; d < levels.begin.size(); ++d)
+        levels.begin[d] += levels.begin[d - 1];
+    levels.order.resize(tree.size());
+    std::vector<std::uint32_t> next(levels.begin.begin(), levels.begin.end() - 1);
+    for (std::size_t c = 0; c < tree.size(); ++c)
+        levels.order[next[depth[c]]++] = std::uint32_t(c);
+    return levels;
+}
+
 } // namespace
 
 // Roots are first gathered into planar groups (the quads of a tessellated wall), and groups
@@ -199,34 +221,14 @@ ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size) {
         queue.push_back({mid, range.end, range.of_items, std::int32_t(c)});
     }
     tree.child_begin.push_back(std::uint32_t(tree.children.size()));
+    tree.levels = cluster_levels(tree);
     return tree;
-}
-
-ClusterLevels cluster_levels(const ClusterTree& tree) {
-    std::vector<std::uint32_t> depth(tree.size(), 0);
-    std::uint32_t deepest = 0;
-    for (std::size_t c = 0; c < tree.size(); ++c) { // parents before children
-        if (tree.parent[c] >= 0)
-            depth[c] = depth[std::size_t(tree.parent[c])] + 1;
-        deepest = std::max(deepest, depth[c]);
-    }
-    ClusterLevels levels;
-    levels.begin.assign(tree.size() > 0 ? deepest + 2 : 1, 0);
-    for (std::uint32_t d : depth)
-        ++levels.begin[d + 1];
-    for (std::size_t d = 1; d < levels.begin.size(); ++d)
-        levels.begin[d] += levels.begin[d - 1];
-    levels.order.resize(tree.size());
-    std::vector<std::uint32_t> next(levels.begin.begin(), levels.begin.end() - 1);
-    for (std::size_t c = 0; c < tree.size(); ++c)
-        levels.order[next[depth[c]]++] = std::uint32_t(c);
-    return levels;
 }
 
 void pull_lobes(const ClusterTree& tree, const Hierarchy& h, const std::vector<Rgb>& value,
                 std::vector<Lobes>& out) {
     out.assign(tree.size(), Lobes{});
-    for_each_cluster_by_level(cluster_levels(tree), true, [&](std::uint32_t c) {
+    for_each_cluster_by_level(tree, true, [&](std::uint32_t c) {
         Lobes& sum = out[c];
         for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
             const NodeRef child = tree.children[k];
@@ -264,7 +266,7 @@ void planar_gradients(const ClusterTree& tree, const Hierarchy& h, const std::ve
     out.assign(tree.size(), Slope{});
     if (departure)
         departure->assign(tree.size(), 0.0f);
-    for_each_cluster_by_level(cluster_levels(tree), true, [&](std::uint32_t c) {
+    for_each_cluster_by_level(tree, true, [&](std::uint32_t c) {
         if (!tree.planar[c])
             return;
         Moments& sum = m[c];

@@ -69,6 +69,11 @@ void lobe_deposit(Lobes& lobes, const Vec3& d, const Rgb& value);
 /// The lobes of a surface of normal \p n carrying \p value per unit area over \p area.
 Lobes surface_lobes(const Vec3& n, double area, const Rgb& value);
 
+/// \brief Clusters by depth: those of depth d are order[begin[d] .. begin[d + 1]).
+struct ClusterLevels {
+    std::vector<std::uint32_t> order, begin;
+};
+
 struct ClusterTree {
     std::vector<Vec3> lo, hi;   ///< bounds of the elements' vertices
     std::vector<double> area;   ///< summed area of the elements
@@ -82,6 +87,7 @@ struct ClusterTree {
     /// cluster, which may exchange light through exact links (hr_links.h) like an element.
     std::vector<std::uint8_t> planar;
     std::vector<Vec3> normal; ///< of a planar cluster's plane (zero for the others)
+    ClusterLevels levels;     ///< for the passes over the tree (for_each_cluster_by_level)
 
     std::size_t size() const { return area.size(); }
     Vec3 centre(std::uint32_t c) const { return (lo[c] + hi[c]) * 0.5; }
@@ -95,19 +101,12 @@ struct ClusterTree {
 ///        \p leaf_size roots. Deterministic.
 ClusterTree build_cluster_tree(const Hierarchy& h, std::size_t leaf_size = 8);
 
-/// \brief The clusters of \p tree by depth: those of depth d are
-///        order[begin[d] .. begin[d + 1]) (parents precede their children in index order).
-struct ClusterLevels {
-    std::vector<std::uint32_t> order, begin;
-};
-ClusterLevels cluster_levels(const ClusterTree& tree);
-
 /// \brief Calls \p fn(c) for every cluster, children before their parents (\p up) or
 ///        parents before their children: in parallel over the clusters of each depth, which
 ///        read only their children's (their parent's) results. The passes over the whole tree
 ///        each sweep made were a third of the sweeps' time, on one core.
-template <typename Fn>
-void for_each_cluster_by_level(const ClusterLevels& levels, bool up, Fn&& fn) {
+template <typename Fn> void for_each_cluster_by_level(const ClusterTree& tree, bool up, Fn&& fn) {
+    const ClusterLevels& levels = tree.levels;
     const std::size_t depths = levels.begin.size() - 1;
     for (std::size_t i = 0; i < depths; ++i) {
         const std::size_t d = up ? depths - 1 - i : i;

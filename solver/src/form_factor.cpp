@@ -65,26 +65,20 @@ PENUMBRA_CLONE_AVX2 void add_contour_terms(const Vec3& a, const Vec3& b, const V
 void form_factors_point_triangle(const Vec3* x, std::size_t count, const Vec3& n,
                                  const std::array<Vec3, 3>& tri, double* out) {
     thread_local ContourPoints whole;
-    thread_local std::vector<std::size_t> whole_index;
     whole.clear();
-    whole_index.clear();
     for (std::size_t k = 0; k < count; ++k) {
         // The clipping's own test: no vertex behind the tangent plane leaves the triangle
         // whole, and its contour the three edges in order.
-        if (dot(tri[0] - x[k], n) >= 0 && dot(tri[1] - x[k], n) >= 0 &&
-            dot(tri[2] - x[k], n) >= 0) {
-            whole.push_back(x[k]);
-            whole_index.push_back(k);
-        } else {
+        if (dot(tri[0] - x[k], n) >= 0 && dot(tri[1] - x[k], n) >= 0 && dot(tri[2] - x[k], n) >= 0)
+            whole.push_back(x[k], k);
+        else
             out[k] = form_factor_point_triangle(x[k], n, tri);
-        }
     }
-    if (whole_index.empty())
+    if (whole.empty())
         return;
     for (std::size_t i = 0; i < 3; ++i)
         add_contour_terms(tri[i], tri[(i + 1) % 3], n, whole);
-    for (std::size_t j = 0; j < whole_index.size(); ++j)
-        out[whole_index[j]] = std::abs(whole.sum[j]) / (2.0 * k_pi);
+    whole.write_form_factors(out);
 }
 
 double solid_angle_triangle(const Vec3& p, const std::array<Vec3, 3>& tri) {

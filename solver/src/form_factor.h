@@ -47,17 +47,6 @@ inline double fold_angle(double ratio, double y, double x) {
     return (1.0 - side) * (0.5 * k_pi) + side * b;
 }
 
-/// \brief atan2(y, x) for y ≥ 0 (an angle in [0, π], between two vectors whose cross product
-///        has length y and dot product x), within 6e-11 rad and 6.1e-11 of it relatively below
-///        π/4. The form factors' contour sums spent a quarter of a large solve in libm's
-///        atan2, which rounds correctly; the series this replaced branched on the octant.
-inline double vector_angle(double y, double x) {
-    const double ax = std::abs(x), hi = std::max(y, ax);
-    if (!(hi > 0))
-        return 0.0;
-    return fold_angle(std::min(y, ax) / hi, y, x);
-}
-
 /// \brief One edge's term of the contour sum, γ n·Γ, for edge vectors \p r0 and \p r1 from
 ///        the point (as components): F = |Σ over a polygon's edges| / 2π where the whole
 ///        polygon lies in front of the point's tangent plane. Branch-free, for the loops over
@@ -80,22 +69,32 @@ inline double contour_term(const Vec3& x, const Vec3& n, const Vec3& a, const Ve
     return contour_term(a.x - x.x, a.y - x.y, a.z - x.z, b.x - x.x, b.y - x.y, b.z - x.z, n);
 }
 
-/// \brief Points that share a tangent plane's normal, as columns, and a contour sum at each.
+/// \brief Points that share a tangent plane's normal, as columns, each with its index in
+///        the caller's list and a contour sum.
 struct ContourPoints {
     std::vector<double> x, y, z, sum;
+    std::vector<std::size_t> index;
     void clear() {
         x.clear();
         y.clear();
         z.clear();
         sum.clear();
+        index.clear();
     }
-    void push_back(const Vec3& p) {
+    void push_back(const Vec3& p, std::size_t i) {
         x.push_back(p.x);
         y.push_back(p.y);
         z.push_back(p.z);
         sum.push_back(0.0);
+        index.push_back(i);
     }
     std::size_t size() const { return x.size(); }
+    bool empty() const { return x.empty(); }
+    /// Writes each point's form factor, |sum| / 2π, to out[its index].
+    void write_form_factors(double* out) const {
+        for (std::size_t j = 0; j < size(); ++j)
+            out[index[j]] = std::abs(sum[j]) / (2.0 * k_pi);
+    }
 };
 
 /// \brief Adds edge (a, b)'s contour term at each of \p points (of tangent-plane normal

@@ -571,26 +571,21 @@ void LinkSet::exact_end(NodeRef q, NodeRef p, const Plane& pq, const Plane& pp, 
     // Points that see all of p take the contour sum of its boundary, edge by edge over the
     // points at once (add_contour_terms); the rest are cut by their tangent planes.
     thread_local ContourPoints whole;
-    thread_local std::vector<std::uint32_t> whole_index;
     whole.clear();
-    whole_index.clear();
     const double eps = 1e-9 * h_.diagonal;
     for (std::size_t k = 0; k < end.points.size(); ++k) {
         const Vec3& x = end.points[k].x;
         if (dot(pp.n, x) - pp.d <= eps)
             continue; // behind the source's plane: it radiates the other way
-        if (sees_whole(x, pq.n, p)) {
-            whole.push_back(x);
-            whole_index.push_back(std::uint32_t(k));
-        } else {
+        if (sees_whole(x, pq.n, p))
+            whole.push_back(x, k);
+        else
             end.values[k] = cut_form_factor(x, pq.n, p, pp, end.unresolved);
-        }
     }
-    if (!whole_index.empty()) {
+    if (!whole.empty()) {
         for_each_contour_edge(
             p, [&](const Vec3& a, const Vec3& b) { add_contour_terms(a, b, pq.n, whole); });
-        for (std::size_t j = 0; j < whole_index.size(); ++j)
-            end.values[whole_index[j]] = std::abs(whole.sum[j]) / (2.0 * k_pi);
+        whole.write_form_factors(end.values.data());
     }
     end.f = 0;
     end.lo = std::numeric_limits<double>::infinity();

@@ -85,27 +85,41 @@ double facing_form_factor(const ElementGeometry& geo, const GatherPoint& p, std:
     return form_factor_point_triangle(p.position, p.normal, geo.triangle[s]);
 }
 
+// Σ radiosity[s] F(p → s) V(p, s) over the triangles s that \p each_candidate(fn) calls fn
+// with: the facing ones' form factors, then their visibilities all at once.
+template <typename Candidates>
+RgbD gather_triangles(const ElementGeometry& geo, const VisibilityQuery& visibility,
+                      const GatherPoint& p, const std::vector<Rgb>& radiosity, int rays, Pcg32& rng,
+                      Candidates&& each_candidate) {
+    thread_local std::vector<std::uint32_t> facing;
+    thread_local std::vector<double> f, visible;
+    facing.clear();
+    f.clear();
+    each_candidate([&](std::uint32_t s) {
+        const double fs = facing_form_factor(geo, p, s);
+        if (fs <= 0)
+            return;
+        facing.push_back(s);
+        f.push_back(fs);
+    });
+    triangle_visibilities(geo, visibility, p, facing, rays, rng, visible);
+    RgbD sum;
+    for (std::size_t i = 0; i < facing.size(); ++i)
+        sum += RgbD(radiosity[facing[i]]) * (f[i] * visible[i]);
+    return sum;
+}
+
 } // namespace
 
 Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
                   const VisibilityQuery& visibility, const GatherPoint& p, int rays_per_source,
                   std::uint64_t seed, const std::vector<std::uint32_t>* emitters) {
-    RgbD sum;
     Pcg32 rng = Pcg32::for_stream(p.purpose, p.id, 1, 0, seed);
-    thread_local std::vector<std::uint32_t> facing;
-    thread_local std::vector<double> f, visible;
-    facing.clear();
-    f.clear();
-    for (std::uint32_t s : emitters ? *emitters : sources.emitters) {
-        const double fs = facing_form_factor(geo, p, s);
-        if (fs <= 0)
-            continue;
-        facing.push_back(s);
-        f.push_back(fs);
-    }
-    triangle_visibilities(geo, visibility, p, facing, rays_per_source, rng, visible);
-    for (std::size_t i = 0; i < facing.size(); ++i)
-        sum += RgbD(sources.emission[facing[i]]) * (f[i] * visible[i]);
+    RgbD sum = gather_triangles(geo, visibility, p, sources.emission, rays_per_source, rng,
+                                [&](auto&& fn) {
+                                    for (std::uint32_t s : emitters ? *emitters : sources.emitters)
+                                        fn(s);
+                                });
     for (const PointLight& light : sources.lights) {
         Vec3 d = light.position - p.position;
         double dist2 = dot(d, d);
@@ -140,22 +154,13 @@ Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
 Rgb gather_elements(const ElementGeometry& geo, const std::vector<Rgb>& exitance,
                     const VisibilityQuery& visibility, const GatherPoint& p, int rays_per_element,
                     std::uint64_t seed) {
-    RgbD sum;
     Pcg32 rng = Pcg32::for_stream(p.purpose, p.id, 2, 0, seed);
-    std::vector<std::uint32_t> facing;
-    std::vector<double> f, visible;
-    for (std::uint32_t s = 0; s < geo.size(); ++s) {
-        if (exitance[s].is_black())
-            continue;
-        const double fs = facing_form_factor(geo, p, s);
-        if (fs <= 0)
-            continue;
-        facing.push_back(s);
-        f.push_back(fs);
-    }
-    triangle_visibilities(geo, visibility, p, facing, rays_per_element, rng, visible);
-    for (std::size_t i = 0; i < facing.size(); ++i)
-        sum += RgbD(exitance[facing[i]]) * (f[i] * visible[i]);
+    const RgbD sum =
+        gather_triangles(geo, visibility, p, exitance, rays_per_element, rng, [&](auto&& fn) {
+            for (std::uint32_t s = 0; s < geo.size(); ++s)
+                if (!exitance[s].is_black())
+                    fn(s);
+        });
     return Rgb(float(sum.r), float(sum.g), float(sum.b));
 }
 

@@ -93,16 +93,21 @@ TEST(Clustering, ErrorFallsWithEpsilon) {
     EXPECT_LT(previous, 0.0025);
 }
 
-// The cluster tree's lower part is face clusters: on the office floor, every leaf cluster's
-// roots lie in one plane and face one way, and every root is in exactly one leaf.
-TEST(Clustering, LeafClustersArePlanarOnTessellatedOffices) {
+// Two offices of tessellation 3, meshed as input (no contact splitting).
+RadiosityMesh tessellated_offices() {
     bench::OfficeParams params;
     params.rooms_x = 2;
     params.rooms_y = 1;
     params.tessellation = 3;
     Scene scene = bench::office_floor(params);
     bench::mesh_input_as_is(scene);
-    const RadiosityMesh mesh = mesher::build_mesh(scene, test::quiet_context());
+    return mesher::build_mesh(scene, test::quiet_context());
+}
+
+// The cluster tree's lower part is face clusters: on the office floor, every leaf cluster's
+// roots lie in one plane and face one way, and every root is in exactly one leaf.
+TEST(Clustering, LeafClustersArePlanarOnTessellatedOffices) {
+    const RadiosityMesh mesh = tessellated_offices();
     const solver::Hierarchy h(mesh);
     const solver::ClusterTree tree = solver::build_cluster_tree(h);
     std::vector<int> seen(h.root_count, 0);
@@ -130,16 +135,10 @@ TEST(Clustering, LeafClustersArePlanarOnTessellatedOffices) {
 // The levels that the sweeps' passes over the tree run in parallel: every cluster once, each
 // level after its parents' (a parent's depth is one less), the top cluster alone first.
 TEST(Clustering, LevelsHoldEveryClusterBelowItsParent) {
-    bench::OfficeParams params;
-    params.rooms_x = 2;
-    params.rooms_y = 1;
-    params.tessellation = 3;
-    Scene scene = bench::office_floor(params);
-    bench::mesh_input_as_is(scene);
-    const RadiosityMesh mesh = mesher::build_mesh(scene, test::quiet_context());
+    const RadiosityMesh mesh = tessellated_offices();
     const solver::Hierarchy h(mesh);
     const solver::ClusterTree tree = solver::build_cluster_tree(h);
-    const solver::ClusterLevels levels = solver::cluster_levels(tree);
+    const solver::ClusterLevels& levels = tree.levels;
     ASSERT_EQ(levels.order.size(), tree.size());
     ASSERT_GE(levels.begin.size(), 3u); // the tree is more than one level deep
     EXPECT_EQ(levels.begin[1] - levels.begin[0], 1u);

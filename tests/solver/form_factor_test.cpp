@@ -25,7 +25,7 @@ TEST(FormFactor, PointBelowRectangleCorner) {
     const double a = 1.3, b = 0.7, c = 0.9;
     Vec3 rect[4] = {{0, 0, c}, {a, 0, c}, {a, b, c}, {0, b, c}};
     double f = form_factor_point_polygon({0, 0, 0}, {0, 0, 1}, rect, 4);
-    // Each edge's angle is within 6e-11 rad (vector_angle): F within 4 × 6e-11 / 2π.
+    // Each edge's angle is within 6e-11 rad (fold_angle): F within 4 × 6e-11 / 2π.
     EXPECT_NEAR(f, corner_rectangle(a, b, c), 4e-11);
 }
 
@@ -75,11 +75,15 @@ TEST(FormFactor, ClosedCubeSumsToOne) {
 // The contour sums' fast angle against libm's atan2 over every octant's ratios, scales from
 // 1e-12 to 1e12, and the axes: within its stated 6e-11 rad, and 6.1e-11 relatively below
 // π/4, where a distant source's small angles lie.
-TEST(FormFactor, VectorAngleMatchesAtan2) {
+TEST(FormFactor, FoldedAngleMatchesAtan2) {
     Pcg32 rng(7, 11);
     double worst = 0, worst_relative = 0;
     auto check = [&](double y, double x) {
-        const double exact = std::atan2(y, x), error = std::abs(vector_angle(y, x) - exact);
+        const double ax = std::abs(x), hi = std::max(y, ax);
+        if (!(hi > 0))
+            return; // no angle: contour_term drops such an edge
+        const double angle = fold_angle(std::min(y, ax) / hi, y, x);
+        const double exact = std::atan2(y, x), error = std::abs(angle - exact);
         worst = std::max(worst, error);
         if (exact > 0 && exact < k_pi / 4)
             worst_relative = std::max(worst_relative, error / exact);
@@ -112,7 +116,7 @@ TEST(FormFactor, ContourTermsOverPointsMatchThePolygonKernel) {
     std::vector<Vec3> xs;
     for (int k = 0; k < 37; ++k) { // an odd count: the vector loop's remainder too
         xs.emplace_back(4 * rng.next_double() - 2, 4 * rng.next_double() - 2, rng.next_double());
-        points.push_back(xs.back());
+        points.push_back(xs.back(), xs.size() - 1);
     }
     for (int i = 0; i < 5; ++i)
         add_contour_terms(pentagon[i], pentagon[(i + 1) % 5], n, points);
@@ -120,8 +124,8 @@ TEST(FormFactor, ContourTermsOverPointsMatchThePolygonKernel) {
         EXPECT_NEAR(std::abs(points.sum[k]) / (2 * k_pi),
                     form_factor_point_polygon(xs[k], n, pentagon, 5), 1e-13);
     ContourPoints on_edge;
-    on_edge.push_back(Vec3(0.5, 0, 2.1)); // on the pentagon's first edge
-    on_edge.push_back(Vec3(-1, 0, 1.8));  // on its line, outside the edge
+    on_edge.push_back(Vec3(0.5, 0, 2.1), 0); // on the pentagon's first edge
+    on_edge.push_back(Vec3(-1, 0, 1.8), 1);  // on its line, outside the edge
     add_contour_terms(pentagon[0], pentagon[1], n, on_edge);
     EXPECT_NEAR(on_edge.sum[0], 0.0, 1e-12); // fails for a NaN too
     EXPECT_NEAR(on_edge.sum[1], 0.0, 1e-12);

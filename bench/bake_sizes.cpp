@@ -19,9 +19,9 @@ int main(int argc, char** argv) {
         edges = {0.10, 0.05, 0.04};
     try {
         const Scene base = load_scene(path);
-        std::printf("%-8s %9s %12s %8s %8s %8s %8s %8s %10s %10s %10s %10s\n", "edge_m",
-                    "elements", "rays", "mesh_s", "bvh_s", "solve_s", "render_s", "total_s",
-                    "emitted_lm", "absorb_lm", "escape_lm", "imbalance");
+        std::printf("%-8s %9s %12s %8s %8s %8s %8s %8s %10s %10s %10s %10s\n", "edge_m", "elements",
+                    "rays", "mesh_s", "bvh_s", "solve_s", "render_s", "total_s", "emitted_lm",
+                    "absorb_lm", "escape_lm", "imbalance");
         for (double edge : edges) {
             Scene scene = base;
             scene.mesher.max_edge_length = edge;
@@ -38,8 +38,8 @@ int main(int argc, char** argv) {
             const auto& pb = r.stats.power;
             std::printf("%-8.4g %9zu %12llu %8.2f %8.2f %8.2f %8.2f %8.2f %10.4g %10.4g %10.4g "
                         "%10.2e\n",
-                        edge, r.mesh.element_count(), (unsigned long long)r.rays, t[0], t[1],
-                        t[2], t[3], total, to_photometric(pb.emitted), to_photometric(pb.absorbed),
+                        edge, r.mesh.element_count(), (unsigned long long)r.rays, t[0], t[1], t[2],
+                        t[3], total, to_photometric(pb.emitted), to_photometric(pb.absorbed),
                         to_photometric(pb.escaped), pb.relative_imbalance());
         }
     } catch (const std::exception& e) {

@@ -21,12 +21,12 @@
 //                 [--min-area A] [--raw-rays N] [--no-solve] [-v]
 
 #include "app/pipeline.h"
+#include "bench_process.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "core/scene_io.h"
 #include "mesher/mesher.h"
-#include "bench_process.h"
 #include "office_scene.h"
 #include "raytrace/raytrace.h"
 
@@ -97,8 +97,7 @@ public:
         t.seconds += seconds_since(start);
         ++t.calls;
     }
-    void first_hit(std::span<const Segment> segments,
-                   std::span<std::int32_t> hit) const override {
+    void first_hit(std::span<const Segment> segments, std::span<std::int32_t> hit) const override {
         const Clock::time_point start = Clock::now();
         inner_.first_hit(segments, hit);
         Tally& t = tally_.local();
@@ -177,7 +176,7 @@ struct Row {
     double peak_mib = 0, mesh_s = 0, bvh_s = 0, solve_s = 0, output_s = 0;
     double raw_rays_s = 0, in_visibility = 0;
     double power_error = 0; ///< (absorbed + escaped) / emitted − 1, summed over the channels
-    bool solved = false; ///< false with --no-solve: no solve and output stages
+    bool solved = false;    ///< false with --no-solve: no solve and output stages
 };
 
 /// The output stage of the CLI without the render: BVH of the leaf mesh, sensors, files.
@@ -196,8 +195,8 @@ std::pair<int, int> parse_offices(const std::string& text) {
     char tail = 0;
     if (std::sscanf(text.c_str(), "%dx%d%c", &nx, &ny, &tail) != 2 || nx < 1 || ny < 1 ||
         nx > 1000 || ny > 1000)
-        throw std::runtime_error("--offices: expected NXxNY with 1 ≤ NX, NY ≤ 1000, got '" +
-                                 text + "'");
+        throw std::runtime_error("--offices: expected NXxNY with 1 ≤ NX, NY ≤ 1000, got '" + text +
+                                 "'");
     return {nx, ny};
 }
 
@@ -336,8 +335,9 @@ int main(int argc, char** argv) {
         ->check(CLI::PositiveNumber);
     cli.add_option("--clustering", o.clustering, "solver.clustering (default: the scene's, auto)")
         ->check(CLI::IsMember({"auto", "on", "off"}));
-    cli.add_option("--offices", o.offices,
-                   "NXxNY offices (e.g. 2x1) instead of the size's; the size then only names the row");
+    cli.add_option(
+        "--offices", o.offices,
+        "NXxNY offices (e.g. 2x1) instead of the size's; the size then only names the row");
     cli.add_option("--tessellation", o.tessellation,
                    "split every rectangle k x k (2k^2 triangles) instead of the size's k")
         ->check(CLI::Range(1, 64));

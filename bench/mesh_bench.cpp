@@ -36,10 +36,10 @@
 #include <thread>
 #include <vector>
 
+#include "bench_process.h"
 #include "core/error.h"
 #include "core/scene_io.h"
 #include "mesher/mesher.h"
-#include "bench_process.h"
 #include "office_scene.h"
 
 namespace {

@@ -60,8 +60,8 @@ Context make_context(const CommonFlags& flags) {
     ctx.progress = flags.quiet ? nullptr : app::make_terminal_progress();
     ctx.threads = flags.threads;
     ctx.seed = flags.seed;
-    ctx.min_level = flags.quiet ? LogLevel::warn
-                                : (flags.verbose > 0 ? LogLevel::debug : LogLevel::info);
+    ctx.min_level =
+        flags.quiet ? LogLevel::warn : (flags.verbose > 0 ? LogLevel::debug : LogLevel::info);
     return ctx;
 }
 
@@ -113,8 +113,7 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
     ctx.info("wrote {}: {} elements, {} rays, emitted {:.4g} lm, absorbed {:.4g} lm, escaped "
              "{:.4g} lm, unshot {:.4g} lm",
              flags.output, result.mesh.element_count(), result.rays, to_photometric(pb.emitted),
-             to_photometric(pb.absorbed), to_photometric(pb.escaped),
-             to_photometric(pb.residual));
+             to_photometric(pb.absorbed), to_photometric(pb.escaped), to_photometric(pb.residual));
     return k_ok;
 }
 
@@ -150,32 +149,39 @@ int main(int argc, char** argv) {
     bake_cmd->add_option("scene", bake.scene, "scene file (JSON, docs/scene-format.md)")
         ->required();
     bake_cmd->add_option("-o,--output", bake.output, "output folder (created if missing)");
-    bake_cmd->add_option("--max-edge", bake.max_edge_m,
-                         "element size in metres: edges up to √2 × this (overrides mesher.max_edge_length)")
+    bake_cmd
+        ->add_option(
+            "--max-edge", bake.max_edge_m,
+            "element size in metres: edges up to √2 × this (overrides mesher.max_edge_length)")
         ->check(CLI::PositiveNumber);
-    bake_cmd->add_option("--residual", bake.residual,
-                         "stop when unshot power / emitted power falls below this")
+    bake_cmd
+        ->add_option("--residual", bake.residual,
+                     "stop when unshot power / emitted power falls below this")
         ->check(CLI::Range(1e-12, 0.999999));
     bake_cmd->add_flag("--no-render", bake.no_render, "skip the camera render");
     bake_cmd->add_option("--method", bake.method, "solver method (overrides solver.method)")
         ->check(CLI::IsMember(
             {"hierarchical", "shooting", "gathering", "jacobi", "gauss_seidel", "matrix"}));
-    bake_cmd->add_option("--epsilon", bake.epsilon,
-                         "hierarchical: refinement threshold, relative to the brightest source's "
-                         "exitance (overrides solver.epsilon)")
+    bake_cmd
+        ->add_option("--epsilon", bake.epsilon,
+                     "hierarchical: refinement threshold, relative to the brightest source's "
+                     "exitance (overrides solver.epsilon)")
         ->check(CLI::Range(1e-12, 1.0));
-    bake_cmd->add_option("--min-area", bake.min_area_m2,
-                         "hierarchical: smallest element area in m² (overrides solver.min_area)")
+    bake_cmd
+        ->add_option("--min-area", bake.min_area_m2,
+                     "hierarchical: smallest element area in m² (overrides solver.min_area)")
         ->check(CLI::PositiveNumber);
-    bake_cmd->add_option("--clustering", bake.clustering,
-                         "hierarchical: start from a cluster tree (on), from all pairs of mesh "
-                         "elements (off), or cluster above 3 000 elements (auto; overrides "
-                         "solver.clustering)")
+    bake_cmd
+        ->add_option("--clustering", bake.clustering,
+                     "hierarchical: start from a cluster tree (on), from all pairs of mesh "
+                     "elements (off), or cluster above 3 000 elements (auto; overrides "
+                     "solver.clustering)")
         ->check(CLI::IsMember({"auto", "on", "off"}));
-    bake_cmd->add_option("--iteration", bake.iteration,
-                         "hierarchical: how each solve between refinements iterates: jacobi, "
-                         "gauss_seidel (blocks of 32 roots) or shooting (progressive, on the "
-                         "hierarchy; overrides solver.iteration)")
+    bake_cmd
+        ->add_option("--iteration", bake.iteration,
+                     "hierarchical: how each solve between refinements iterates: jacobi, "
+                     "gauss_seidel (blocks of 32 roots) or shooting (progressive, on the "
+                     "hierarchy; overrides solver.iteration)")
         ->check(CLI::IsMember({"jacobi", "gauss_seidel", "shooting"}));
     bake_cmd->add_option("--reuse", bake.reuse,
                          "hierarchical: re-solve from an earlier bake's folder (or its "
@@ -185,8 +191,9 @@ int main(int argc, char** argv) {
         "--no-state", bake.no_state,
         "hierarchical: do not write solver_state.bin (it holds every link), and free "
         "the links once the solve is done");
-    bake_cmd->add_option("--series", bake.series_every_shots,
-                         "write the solution every K shots as series/mesh_*.vtu + series.pvd")
+    bake_cmd
+        ->add_option("--series", bake.series_every_shots,
+                     "write the solution every K shots as series/mesh_*.vtu + series.pvd")
         ->check(CLI::PositiveNumber);
     add_common_flags(*bake_cmd, common);
     std::string validate_scene_path;
@@ -196,8 +203,9 @@ int main(int argc, char** argv) {
     app::ViewRequest view;
     auto* view_cmd = cli.add_subcommand(
         "view", "show a bake's mesh.vtu or series.pvd in a window, or render it to a PNG");
-    view_cmd->add_option("input", view.input,
-                         "output folder (series.pvd, else mesh.vtu) or .vtu/.vtp/.pvd file")
+    view_cmd
+        ->add_option("input", view.input,
+                     "output folder (series.pvd, else mesh.vtu) or .vtu/.vtp/.pvd file")
         ->required();
     view_cmd->add_option("--png", view.png, "render off-screen to this PNG file, no window");
     view_cmd->add_option("--size", view.size, "picture size WxH (default: the scene camera's)");

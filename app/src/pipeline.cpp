@@ -113,8 +113,8 @@ void write_outputs(const std::string& dir, const Scene& scene, const BakeResult&
         viewer::remove_series(dir);
     if (result.render) {
         write_exr(path("render.exr"), *result.render);
-        double exposure = scene.camera->exposure > 0 ? scene.camera->exposure
-                                                     : auto_exposure(*result.render);
+        double exposure =
+            scene.camera->exposure > 0 ? scene.camera->exposure : auto_exposure(*result.render);
         write_png(path("render.png"), *result.render, exposure);
     }
     if (!scene.sensors.empty())

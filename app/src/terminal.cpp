@@ -38,11 +38,16 @@ public:
 private:
     static spdlog::level::level_enum to_spdlog(LogLevel level) {
         switch (level) {
-        case LogLevel::trace: return spdlog::level::trace;
-        case LogLevel::debug: return spdlog::level::debug;
-        case LogLevel::info: return spdlog::level::info;
-        case LogLevel::warn: return spdlog::level::warn;
-        case LogLevel::error: return spdlog::level::err;
+        case LogLevel::trace:
+            return spdlog::level::trace;
+        case LogLevel::debug:
+            return spdlog::level::debug;
+        case LogLevel::info:
+            return spdlog::level::info;
+        case LogLevel::warn:
+            return spdlog::level::warn;
+        case LogLevel::error:
+            return spdlog::level::err;
         }
         return spdlog::level::info;
     }
@@ -127,7 +132,9 @@ void redraw_bar() {
 
 } // namespace
 
-std::shared_ptr<LogSink> make_stderr_log_sink() { return std::make_shared<SpdlogSink>(); }
+std::shared_ptr<LogSink> make_stderr_log_sink() {
+    return std::make_shared<SpdlogSink>();
+}
 
 std::shared_ptr<ProgressSink> make_terminal_progress() {
     if (!::isatty(STDERR_FILENO))

@@ -47,8 +47,7 @@ void write_text_file(const std::string& path, const std::string& text) {
         out << text;
         out.close();
         if (!out)
-            throw ExternalError(
-                fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
+            throw ExternalError(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
     });
 }
 

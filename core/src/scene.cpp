@@ -7,7 +7,9 @@ namespace penumbra {
 
 namespace {
 
-double cos_deg(double deg) { return std::cos(deg * k_pi / 180.0); }
+double cos_deg(double deg) {
+    return std::cos(deg * k_pi / 180.0);
+}
 
 } // namespace
 
@@ -34,9 +36,13 @@ double PointLight::profile_solid_angle() const {
     return 2.0 * k_pi * ((1.0 - cos_beam) + 0.5 * (cos_beam - cos_cutoff));
 }
 
-RgbD PointLight::power() const { return RgbD(intensity) * profile_solid_angle(); }
+RgbD PointLight::power() const {
+    return RgbD(intensity) * profile_solid_angle();
+}
 
-double Sun::angular_radius() const { return 0.5 * angular_diameter_deg * k_pi / 180.0; }
+double Sun::angular_radius() const {
+    return 0.5 * angular_diameter_deg * k_pi / 180.0;
+}
 
 Rgb Sun::unoccluded(const Vec3& n) const {
     return irradiance * float(std::max(0.0, dot(n, direction)));

@@ -304,7 +304,8 @@ void validate_settings(const Scene& scene) {
     check(!mesher.contact_tolerance ||
               (std::isfinite(*mesher.contact_tolerance) && *mesher.contact_tolerance >= 0),
           scene, "mesher.contact_tolerance", "must be >= 0");
-    check(mesher.element_budget >= 0, scene, "mesher.element_budget", "must be >= 0 (0 = no limit)");
+    check(mesher.element_budget >= 0, scene, "mesher.element_budget",
+          "must be >= 0 (0 = no limit)");
     check(mesher.discontinuity.max_order >= 0 && mesher.discontinuity.max_order <= 2, scene,
           "mesher.discontinuity.max_order", "must be 0, 1 or 2");
     const SolverSettings& solver = scene.solver;

@@ -320,8 +320,8 @@ PointLight parse_point_light(const Field& field, double metres_per_unit) {
 // facing the sun). `color` goes with `illuminance_lx` only: radiometric input carries its
 // colour in its channels.
 Sun parse_sun(const Field& field) {
-    field.expect_keys({"direction", "illuminance_lx", "irradiance_w_m2", "color",
-                       "angular_diameter_deg"});
+    field.expect_keys(
+        {"direction", "illuminance_lx", "irradiance_w_m2", "color", "angular_diameter_deg"});
     Sun sun;
     sun.direction = unit_direction(field.required("direction"), " (toward the sun)");
     const bool photometric = field.has("illuminance_lx");
@@ -467,7 +467,7 @@ SolverSettings parse_solver(const Field& field, double metres_per_unit) {
     if (field.has("method")) {
         const Field method = field.child("method");
         solver.method = method.string();
-        const char* known[] = {"hierarchical", "shooting", "gathering",
+        const char* known[] = {"hierarchical", "shooting",     "gathering",
                                "jacobi",       "gauss_seidel", "matrix"};
         if (std::find(std::begin(known), std::end(known), solver.method) == std::end(known))
             method.fail(fmt::format("unknown method '{}' (known: hierarchical, shooting, "
@@ -483,19 +483,18 @@ SolverSettings parse_solver(const Field& field, double metres_per_unit) {
     if (field.has("clustering")) {
         const Field clustering = field.child("clustering");
         solver.clustering = clustering.string();
-        if (solver.clustering != "auto" && solver.clustering != "on" &&
-            solver.clustering != "off")
-            clustering.fail(fmt::format("unknown clustering '{}' (known: auto, on, off)",
-                                        solver.clustering));
+        if (solver.clustering != "auto" && solver.clustering != "on" && solver.clustering != "off")
+            clustering.fail(
+                fmt::format("unknown clustering '{}' (known: auto, on, off)", solver.clustering));
     }
     if (field.has("iteration")) {
         const Field iteration = field.child("iteration");
         solver.iteration = iteration.string();
         if (solver.iteration != "jacobi" && solver.iteration != "gauss_seidel" &&
             solver.iteration != "shooting")
-            iteration.fail(fmt::format(
-                "unknown iteration '{}' (known: jacobi, gauss_seidel, shooting)",
-                solver.iteration));
+            iteration.fail(
+                fmt::format("unknown iteration '{}' (known: jacobi, gauss_seidel, shooting)",
+                            solver.iteration));
     }
     if (field.has("residual"))
         solver.residual = number_in(field.child("residual"), 1e-12, 0.5, "[1e-12, 0.5]");

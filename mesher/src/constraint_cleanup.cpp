@@ -135,8 +135,8 @@ std::vector<Segment2> merge_collinear(const std::vector<Segment2>& segments, dou
             if (!boxes_near(segments[i], segments[j], snap) ||
                 !collinear(segments[i], segments[j], snap))
                 continue;
-            const Segment2& ref = segments[i].length() >= segments[j].length() ? segments[i]
-                                                                                : segments[j];
+            const Segment2& ref =
+                segments[i].length() >= segments[j].length() ? segments[i] : segments[j];
             const Interval a = project(segments[i], ref), b = project(segments[j], ref);
             if (std::max(a.first, b.first) <= std::min(a.second, b.second) + snap / ref.length())
                 groups.unite(std::uint32_t(i), std::uint32_t(j));
@@ -158,7 +158,8 @@ std::vector<Segment2> merge_collinear(const std::vector<Segment2>& segments, dou
         for (std::size_t i : members[g])
             intervals.push_back(project(segments[i], ref));
         for (const Interval& iv : merge_intervals(std::move(intervals), snap / ref.length()))
-            out.push_back({ref.a + (ref.b - ref.a) * iv.first, ref.a + (ref.b - ref.a) * iv.second});
+            out.push_back(
+                {ref.a + (ref.b - ref.a) * iv.first, ref.a + (ref.b - ref.a) * iv.second});
     }
     return out;
 }
@@ -264,11 +265,10 @@ std::vector<NodedSegment> unique_segments(std::vector<NodedSegment> segs) {
     std::sort(segs.begin(), segs.end(), [&](const NodedSegment& s, const NodedSegment& t) {
         return key(s) < key(t) || (key(s) == key(t) && s.outline > t.outline);
     });
-    segs.erase(std::unique(segs.begin(), segs.end(),
-                           [&](const NodedSegment& s, const NodedSegment& t) {
-                               return key(s) == key(t);
-                           }),
-               segs.end());
+    segs.erase(
+        std::unique(segs.begin(), segs.end(),
+                    [&](const NodedSegment& s, const NodedSegment& t) { return key(s) == key(t); }),
+        segs.end());
     return segs;
 }
 

@@ -22,8 +22,7 @@ std::vector<Segment2> merge_collinear(const std::vector<Segment2>& segments, dou
 ///        alternately down to their distance.
 std::vector<Segment2> clean_segments(const std::vector<Vec2>& outline,
                                      const std::vector<Segment2>& segments,
-                                     const std::vector<Segment2>& fixed, double snap,
-                                     double merge);
+                                     const std::vector<Segment2>& fixed, double snap, double merge);
 
 /// \brief The outline edges and the segments as a noded set ready for a constrained
 ///        triangulation: segment endpoints within \p merge of the outline move onto it, points

@@ -130,8 +130,8 @@ void coincident_covers(const Surface& s, const Surface& t, std::vector<PairResul
         const Surface& loser = s_loses ? s : t;
         const Surface& winner = s_loses ? t : s;
         const bool loser_front = s_loses ? a.front : b.front;
-        out.push_back({loser.id, true, {},
-                       {project_outline(winner, loser), loser_front, !loser_front}});
+        out.push_back(
+            {loser.id, true, {}, {project_outline(winner, loser), loser_front, !loser_front}});
         duplicate = duplicate || (a.front && b.front);
     }
 }
@@ -179,7 +179,8 @@ std::vector<PairResult> contacts_of(const std::vector<Surface>& surfaces, const 
             coplanar_contact(s, t, params, out, duplicate);
             if (duplicate)
                 ctx.warn("mesh: surfaces {} and {} coincide; the second is hidden where they "
-                         "overlap", s.name, t.name);
+                         "overlap",
+                         s.name, t.name);
         } else if (length(cross(s.normal, t.normal)) > 1e-9) {
             transversal_contact(s, t, params, out);
         }

@@ -96,8 +96,7 @@ bool one_side(const Vec3& m, const Vec3& q, const std::vector<Vec3>& points, dou
 
 // An event of \p kind between source \p si (its vertex or edge \p k) and blocker feature
 // \p feature; the caller sets its wedge.
-Event new_event(EventKind kind, std::uint32_t si, std::uint32_t feature, std::size_t k,
-                int order) {
+Event new_event(EventKind kind, std::uint32_t si, std::uint32_t feature, std::size_t k, int order) {
     Event ev;
     ev.kind = kind;
     ev.source = si;
@@ -267,9 +266,8 @@ std::vector<Vec3> sun_rim_at(const Source& sun, const FeatureVertex& vertex) {
     std::vector<std::pair<double, Vec3>> breaks;
     for (const Vec3& nb : vertex.neighbours) {
         std::array<Vec3, 2> touching;
-        const int count = length(nb - vertex.p) > 0
-                              ? sun_tangent_directions(sun, nb - vertex.p, touching)
-                              : 0;
+        const int count =
+            length(nb - vertex.p) > 0 ? sun_tangent_directions(sun, nb - vertex.p, touching) : 0;
         for (int k = 0; k < count; ++k) {
             const Vec3& d = touching[std::size_t(k)];
             breaks.emplace_back(std::atan2(dot(d, frame.t), dot(d, frame.s)), d);
@@ -291,16 +289,16 @@ std::vector<Vec3> sun_rim_at(const Source& sun, const FeatureVertex& vertex) {
         const int parts = std::max(1, int(std::ceil((a1 - a0) / max_step - 1e-9)));
         for (int p = 1; p < parts; ++p) {
             const double phi = a0 + (a1 - a0) * p / parts;
-            rim.push_back(frame.to_world(Vec3(sun.sin_radius * std::cos(phi),
-                                              sun.sin_radius * std::sin(phi), cos_radius)));
+            rim.push_back(frame.to_world(
+                Vec3(sun.sin_radius * std::cos(phi), sun.sin_radius * std::sin(phi), cos_radius)));
         }
     }
     return rim;
 }
 
 // Whether some of up to five points on [a, b] sees the sun along the unit direction d.
-bool sees_along(const SurfaceBvh& bvh, const Vec3& a, const Vec3& b, const Vec3& d,
-                double reach, const std::vector<std::uint32_t>& skip) {
+bool sees_along(const SurfaceBvh& bvh, const Vec3& a, const Vec3& b, const Vec3& d, double reach,
+                const std::vector<std::uint32_t>& skip) {
     for (double u : {0.5, 0.02, 0.98, 0.25, 0.75})
         if (!bvh.occluded(a + (b - a) * u, d * reach, 1e-6, 1.0, skip))
             return true;
@@ -308,8 +306,8 @@ bool sees_along(const SurfaceBvh& bvh, const Vec3& a, const Vec3& b, const Vec3&
 }
 
 // Whether w sees some of up to five directions of the chord [a, b] of the sun's rim.
-bool sees_chord(const SurfaceBvh& bvh, const Vec3& w, const Vec3& a, const Vec3& b,
-                double reach, const std::vector<std::uint32_t>& skip) {
+bool sees_chord(const SurfaceBvh& bvh, const Vec3& w, const Vec3& a, const Vec3& b, double reach,
+                const std::vector<std::uint32_t>& skip) {
     for (double u : {0.5, 0.02, 0.98, 0.25, 0.75})
         if (!bvh.occluded(w, normalize(a + (b - a) * u) * reach, 1e-6, 1.0, skip))
             return true;
@@ -318,8 +316,7 @@ bool sees_chord(const SurfaceBvh& bvh, const Vec3& w, const Vec3& a, const Vec3&
 
 // The sun's VE wedge: the part of the plane through the edge [a, b] and the direction d
 // beyond the edge, between the lines through a and b parallel to d; false if degenerate.
-bool sun_vertex_edge_wedge(Event& ev, const Vec3& d, const Vec3& a, const Vec3& b,
-                           double reach) {
+bool sun_vertex_edge_wedge(Event& ev, const Vec3& d, const Vec3& a, const Vec3& b, double reach) {
     const Vec3 n = cross(b - a, d);
     if (length(n) <= 1e-12 * length(b - a) + 1e-300)
         return false;
@@ -355,8 +352,8 @@ void sun_vertex_edge_events(const Source& src, std::uint32_t si, const FeatureEd
             !sees_along(bvh, a, b, d, reach, edge.surfaces))
             continue;
         // A disc's visible part grows as t^3/2.
-        Event ev = new_event(EventKind::vertex_edge, si, ei, std::size_t(k),
-                             src.sin_radius > 0 ? 2 : 0);
+        Event ev =
+            new_event(EventKind::vertex_edge, si, ei, std::size_t(k), src.sin_radius > 0 ? 2 : 0);
         if (sun_vertex_edge_wedge(ev, d, a, b, reach))
             out.push_back(std::move(ev));
     }
@@ -391,8 +388,7 @@ void vertex_edge_part_events(const Source& src, std::uint32_t si, const FeatureE
     for (std::size_t k = 0; k < n; ++k) {
         const Vec3& v = src.vertices[k];
         const Vec3 m = cross(a - v, b - v);
-        if (!one_side(m, a, edge.wings, params.diagonal) ||
-            !sees(bvh, a, b, v, skip))
+        if (!one_side(m, a, edge.wings, params.diagonal) || !sees(bvh, a, b, v, skip))
             continue;
         Event ev = new_event(EventKind::vertex_edge, si, ei, k,
                              src.surface < 0 ? 0
@@ -438,8 +434,7 @@ void edge_vertex_events(const Source& src, std::uint32_t si, const Features& fea
         const Vec3& a = src.vertices[k];
         const Vec3& b = src.vertices[(k + 1) % n];
         const Vec3 m = cross(b - a, w - a);
-        if (!one_side(m, w, vertex.neighbours, params.diagonal) ||
-            !sees(bvh, a, b, w, skip))
+        if (!one_side(m, w, vertex.neighbours, params.diagonal) || !sees(bvh, a, b, w, skip))
             continue;
         Event ev = new_event(EventKind::edge_vertex, si, vi, k, 2);
         for (const Vec3& nb : vertex.neighbours)
@@ -466,8 +461,8 @@ std::vector<Event> critical_events(const std::vector<Source>& sources, const Fea
                 vertex_edge_events(sources[si], si, features, std::uint32_t(f), bvh, params,
                                    chunks[i]);
             else
-                edge_vertex_events(sources[si], si, features, std::uint32_t(f - ne), bvh,
-                                   params, chunks[i]);
+                edge_vertex_events(sources[si], si, features, std::uint32_t(f - ne), bvh, params,
+                                   chunks[i]);
         });
     });
     std::vector<Event> out;

@@ -35,7 +35,7 @@ struct Source {
     /// The polygon's corners or the point; the sun: unit directions toward the corners of a
     /// regular polygon inscribed in its rim (its centre alone for a disc of no size).
     std::vector<Vec3> vertices;
-    Vec3 normal;     ///< of the emitting side
+    Vec3 normal;       ///< of the emitting side
     double offset = 0; ///< dot(normal, p) on the source plane
     /// A spot: it lights only the directions x − p with cos θ to this unit axis above
     /// cos_cutoff (-1, every direction, for other sources).
@@ -69,11 +69,11 @@ struct Event {
     int order = 2;              ///< 0 for point lights, 1 for parallel edges, else 2
     /// VE: the source vertex (the sun: a point of the blocker edge); EV: the blocker vertex
     Vec3 apex;
-    Vec3 toward;                ///< the sun's VE: unit direction of the disc point touched
-    Vec3 near_a, near_b;        ///< VE: the blocker edge (the part in front of the source)
-    Vec3 normal;                ///< unit normal of the wedge's plane
+    Vec3 toward;         ///< the sun's VE: unit direction of the disc point touched
+    Vec3 near_a, near_b; ///< VE: the blocker edge (the part in front of the source)
+    Vec3 normal;         ///< unit normal of the wedge's plane
     std::vector<HalfPlane> bounds;
-    BBox box;                   ///< bounds the wedge inside the scene
+    BBox box; ///< bounds the wedge inside the scene
 };
 
 /// \brief The VE and EV events of every source whose blocker feature is a silhouette seen

@@ -75,8 +75,8 @@ std::vector<Segment2> contact_trace(const Event& ev, const Surface& r, const Mes
     std::vector<Segment2> out;
     if (len <= params.snap)
         return out;
-    for (const Interval& iv : clip_line_to_polygon(a, b - a, 0.0, 1.0, r.outline2d,
-                                                   params.snap / len))
+    for (const Interval& iv :
+         clip_line_to_polygon(a, b - a, 0.0, 1.0, r.outline2d, params.snap / len))
         out.push_back({a + (b - a) * iv.first, a + (b - a) * iv.second});
     return out;
 }
@@ -191,8 +191,7 @@ std::vector<Piece> event_pieces(const Event& ev, const std::vector<Source>& sour
     std::vector<Piece> out;
     for (std::uint32_t ri : bvh.overlapping(ev.box)) {
         const Surface& r = surfaces[ri];
-        if (std::find(skip.begin(), skip.end(), ri) != skip.end() ||
-            !receives(src, r, params.snap))
+        if (std::find(skip.begin(), skip.end(), ri) != skip.end() || !receives(src, r, params.snap))
             continue;
         const bool contact = ev.kind == EventKind::vertex_edge &&
                              std::abs(r.distance(ev.near_a)) <= params.contact_tol &&
@@ -203,13 +202,14 @@ std::vector<Piece> event_pieces(const Event& ev, const std::vector<Source>& sour
         std::vector<std::uint32_t> line_skip = skip;
         line_skip.push_back(ri);
         const CriticalLine line(ev, src, bvh, std::move(line_skip), params);
-        for (const Segment2& s : contact ? contact_trace(ev, r, params)
-                                         : wedge_trace(ev, r, params)) {
+        for (const Segment2& s :
+             contact ? contact_trace(ev, r, params) : wedge_trace(ev, r, params)) {
             const double len = s.length();
             auto open = [&](double t) { return line.open(r.to_3d(s.a + (s.b - s.a) * t)); };
             for (const Interval& iv : open_parts(open, len, params))
                 if ((iv.second - iv.first) * len > 10 * params.snap)
-                    out.push_back({ri, {s.a + (s.b - s.a) * iv.first, s.a + (s.b - s.a) * iv.second},
+                    out.push_back({ri,
+                                   {s.a + (s.b - s.a) * iv.first, s.a + (s.b - s.a) * iv.second},
                                    contact ? 0 : ev.order});
         }
     }
@@ -325,8 +325,7 @@ void fit_sun_ends(std::vector<ReceiverSegment>& segs, const MeshParams& params) 
                 }
                 for (std::size_t k = 0; k < sun.size(); ++k) {
                     const auto& box = boxes[k];
-                    if (sun[k] == i || v.x < box[0] || v.x > box[1] || v.y < box[2] ||
-                        v.y > box[3])
+                    if (sun[k] == i || v.x < box[0] || v.x > box[1] || v.y < box[2] || v.y > box[3])
                         continue;
                     for (const bool s_at_b : {false, true})
                         changed = join_ends(t, at_b, segs[sun[k]].segment, s_at_b, m) || changed;
@@ -358,11 +357,9 @@ void fit_sun_ends(std::vector<ReceiverSegment>& segs, const MeshParams& params) 
 
 } // namespace
 
-std::vector<std::vector<ReceiverSegment>> find_discontinuities(const Scene& scene,
-                                                               const std::vector<Surface>& surfaces,
-                                                               const SurfaceBvh& bvh,
-                                                               const MeshParams& params,
-                                                               const Context& ctx) {
+std::vector<std::vector<ReceiverSegment>>
+find_discontinuities(const Scene& scene, const std::vector<Surface>& surfaces,
+                     const SurfaceBvh& bvh, const MeshParams& params, const Context& ctx) {
     std::vector<std::vector<ReceiverSegment>> out(surfaces.size());
     const std::vector<Source> sources = collect_sources(scene, surfaces);
     if (params.max_order < 0 || sources.empty())
@@ -376,8 +373,8 @@ std::vector<std::vector<ReceiverSegment>> find_discontinuities(const Scene& scen
         const std::size_t end = std::min(events.size(), begin + block);
         run_in_arena(ctx, [&] {
             parallel_for_index(end - begin, 4, [&](std::size_t k) {
-                pieces[begin + k] = event_pieces(events[begin + k], sources, features, surfaces,
-                                                 bvh, params);
+                pieces[begin + k] =
+                    event_pieces(events[begin + k], sources, features, surfaces, bvh, params);
             });
         });
         progress.update(double(end) / double(events.size()));

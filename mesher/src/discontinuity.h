@@ -28,10 +28,8 @@ struct ReceiverSegment {
 ///        are merged. The sun's boundaries (D2 but at contacts) are finer than the merge
 ///        distance: ends of its segments near another of them are moved onto it (see
 ///        fit_sun_ends in the .cpp).
-std::vector<std::vector<ReceiverSegment>> find_discontinuities(const Scene& scene,
-                                                               const std::vector<Surface>& surfaces,
-                                                               const SurfaceBvh& bvh,
-                                                               const MeshParams& params,
-                                                               const Context& ctx);
+std::vector<std::vector<ReceiverSegment>>
+find_discontinuities(const Scene& scene, const std::vector<Surface>& surfaces,
+                     const SurfaceBvh& bvh, const MeshParams& params, const Context& ctx);
 
 } // namespace penumbra::mesher

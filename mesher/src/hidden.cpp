@@ -48,7 +48,9 @@ std::vector<Vec3> probe_directions() {
     return dirs;
 }
 
-Vec3 centre(const BBox& b) { return (b.lo + b.hi) * 0.5; }
+Vec3 centre(const BBox& b) {
+    return (b.lo + b.hi) * 0.5;
+}
 
 // A simple convex outline: no right turn and one full turn in all (counter-clockwise).
 bool convex_outline(const std::vector<Vec2>& outline) {
@@ -106,8 +108,8 @@ void EnclosureTest::build_blockers() {
         const Vec3 nn = s.normal;
         const double lead = std::abs(nn.x) > 1e-6 ? nn.x : (std::abs(nn.y) > 1e-6 ? nn.y : nn.z);
         const double sign = lead < 0 ? -1.0 : 1.0;
-        planes[{rounded(sign * nn.x, 1e-9), rounded(sign * nn.y, 1e-9),
-                rounded(sign * nn.z, 1e-9), rounded(sign * s.offset, length_step)}]
+        planes[{rounded(sign * nn.x, 1e-9), rounded(sign * nn.y, 1e-9), rounded(sign * nn.z, 1e-9),
+                rounded(sign * s.offset, length_step)}]
             .push_back(i);
     }
     DisjointSets sets(n);
@@ -177,8 +179,8 @@ std::int32_t EnclosureTest::build_sources(std::uint32_t first, std::uint32_t cou
     }
     const Vec3 extent = box.hi - box.lo;
     const std::size_t axis = extent.x >= extent.y && extent.x >= extent.z ? 0
-                             : extent.y >= extent.z                        ? 1
-                                                                           : 2;
+                             : extent.y >= extent.z                       ? 1
+                                                                          : 2;
     const std::uint32_t half = count / 2;
     std::nth_element(sources_.begin() + first, sources_.begin() + first + half,
                      sources_.begin() + first + count,
@@ -282,15 +284,14 @@ bool EnclosureTest::sees_a_source(const Vec3& q) const {
 
 bool EnclosureTest::enclosed(const Vec3& p, const Vec3& n, std::uint32_t s, double inradius,
                              const HiddenAt& hidden_at) const {
-    const double lift = std::min(0.1 * inradius, std::max(10 * params_.snap,
-                                                           1e-5 * params_.diagonal));
+    const double lift =
+        std::min(0.1 * inradius, std::max(10 * params_.snap, 1e-5 * params_.diagonal));
     const Vec3 q = p + n * lift;
     const Frame frame = Frame::from_normal(n);
     const std::array<std::uint32_t, 1> skip{s};
     for (const Vec3& local : directions_) {
         const Vec3 dir = frame.to_world(local);
-        const SurfaceBvh::Hit hit =
-            bvh_.first_hit(q, dir, 0.0, 4.0 * params_.diagonal + 1.0, skip);
+        const SurfaceBvh::Hit hit = bvh_.first_hit(q, dir, 0.0, 4.0 * params_.diagonal + 1.0, skip);
         if (hit.surface < 0)
             return false;
         if (!hit.back &&

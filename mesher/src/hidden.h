@@ -15,8 +15,8 @@ namespace penumbra::mesher {
 class EnclosureTest {
 public:
     /// \p surfaces and \p bvh must outlive the test.
-    EnclosureTest(const Scene& scene, const std::vector<Surface>& surfaces,
-                  const SurfaceBvh& bvh, const MeshParams& params);
+    EnclosureTest(const Scene& scene, const std::vector<Surface>& surfaces, const SurfaceBvh& bvh,
+                  const MeshParams& params);
 
     /// Whether side \p back of surface \p s is already known to be hidden at point \p p.
     using HiddenAt = std::function<bool(std::uint32_t s, const Vec3& p, bool back)>;

@@ -23,7 +23,9 @@ struct Offsets {
     std::size_t patch = 0, vertex = 0, element = 0, geometry = 0;
 };
 
-bool has_front(const SurfaceTriangulation& t) { return !t.sides[0].triangles.empty(); }
+bool has_front(const SurfaceTriangulation& t) {
+    return !t.sides[0].triangles.empty();
+}
 bool has_back(const Surface& s, const SurfaceTriangulation& t) {
     return s.two_sided && !t.sides[1].triangles.empty();
 }
@@ -89,10 +91,10 @@ void write_surface(RadiosityMesh& mesh, const Scene& scene, const Surface& s,
     back.normal = -s.normal;
     back.emission = mat.emission_two_sided ? front.emission : Rgb{};
     const auto none = std::vector<std::int32_t>(tri.face_count, -1);
-    const auto f = has_front(tri) ? write_side(mesh, s, tri.sides[0], front, tri.face_count, at)
-                                  : none;
-    const auto b = has_back(s, tri) ? write_side(mesh, s, tri.sides[1], back, tri.face_count, at)
-                                    : none;
+    const auto f =
+        has_front(tri) ? write_side(mesh, s, tri.sides[0], front, tri.face_count, at) : none;
+    const auto b =
+        has_back(s, tri) ? write_side(mesh, s, tri.sides[1], back, tri.face_count, at) : none;
     for (std::size_t i = 0; i < tri.face_count; ++i) {
         if (f[i] >= 0 && b[i] >= 0) {
             mesh.element_twin[std::size_t(f[i])] = b[i];
@@ -197,11 +199,10 @@ void check_patches(const RadiosityMesh& mesh, const Context& ctx) {
         if (!worst || s.failed_patch < worst->failed_patch)
             worst = &s;
     if (worst && worst->failed_patch < mesh.patches.size())
-        throw InternalError(fmt::format("mesher: patch {} (surface {}) is not a manifold "
-                                        "triangle mesh at element {}",
-                                        worst->failed_patch,
-                                        mesh.patches[worst->failed_patch].surface,
-                                        worst->failed_element));
+        throw InternalError(fmt::format(
+            "mesher: patch {} (surface {}) is not a manifold "
+            "triangle mesh at element {}",
+            worst->failed_patch, mesh.patches[worst->failed_patch].surface, worst->failed_element));
 }
 
 } // namespace penumbra::mesher

@@ -79,8 +79,9 @@ std::vector<SurfaceTriangulation> triangulate_all(const std::vector<Surface>& su
                 }
                 out[i] = triangulator->refine(prepared[i].extra, rs);
             } catch (const ExternalError& e) {
-                throw InputError("", "", fmt::format("cannot triangulate surface {}: {}",
-                                                     surfaces[i].name, e.what()));
+                throw InputError(
+                    "", "",
+                    fmt::format("cannot triangulate surface {}: {}", surfaces[i].name, e.what()));
             }
             if (last)
                 prepared[i].triangulator.reset();
@@ -94,8 +95,8 @@ std::vector<SurfaceTriangulation> triangulate_all(const std::vector<Surface>& su
         if (out[i].capped)
             ctx.warn("mesh: surface {}: quality refinement stopped after {} insertions "
                      "(constraints nearly touch); some elements keep small angles",
-                     surfaces[i].name, refine_settings(surfaces[i], prepared[i], params,
-                                                       max_edge).max_steps);
+                     surfaces[i].name,
+                     refine_settings(surfaces[i], prepared[i], params, max_edge).max_steps);
     return out;
 }
 
@@ -139,8 +140,8 @@ void record_discontinuities(RadiosityMesh& mesh, const std::vector<Surface>& sur
     for (std::size_t s = 0; s < surfaces.size(); ++s)
         for (const ReceiverSegment& d : discontinuities[s])
             mesh.discontinuities.push_back({surfaces[s].to_3d(d.segment.a),
-                                            surfaces[s].to_3d(d.segment.b),
-                                            std::uint32_t(s), d.source, d.order});
+                                            surfaces[s].to_3d(d.segment.b), std::uint32_t(s),
+                                            d.source, d.order});
 }
 
 /// Logs (debug) the seconds of each meshing stage and the peak RSS so far, for profiling at
@@ -176,9 +177,9 @@ void log_summary(const Context& ctx, const Scene& scene, const RadiosityMesh& me
     ctx.info("mesh: {} polygons -> {} surfaces, {} contacts, {:.4g} m2 hidden, discontinuities "
              "D0/D1/D2 {}/{}/{}, {} patches, {} elements, {} vertices (max edge {:.4g} m, "
              "{:.2f} s)",
-             scene.polygons.size(), mesh.surfaces.size(), cuts, hidden, by_order[0],
-             by_order[1], by_order[2], mesh.patches.size(), mesh.element_count(),
-             mesh.vertex_count(), max_edge, seconds);
+             scene.polygons.size(), mesh.surfaces.size(), cuts, hidden, by_order[0], by_order[1],
+             by_order[2], mesh.patches.size(), mesh.element_count(), mesh.vertex_count(), max_edge,
+             seconds);
 }
 
 } // namespace

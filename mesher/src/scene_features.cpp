@@ -46,8 +46,8 @@ Features collect_features(const std::vector<Surface>& surfaces, double merge) {
         const std::size_t n = s.outline.size();
         std::vector<std::uint32_t> ids;
         for (const Vec3& p : s.outline) {
-            auto [it, fresh] = vertex_of.try_emplace(key_of(p, cell),
-                                                     std::uint32_t(out.vertices.size()));
+            auto [it, fresh] =
+                vertex_of.try_emplace(key_of(p, cell), std::uint32_t(out.vertices.size()));
             if (fresh)
                 out.vertices.push_back({p, {}, {}});
             ids.push_back(it->second);

@@ -8,7 +8,9 @@ namespace penumbra::mesher {
 
 namespace {
 
-Vec3 centre(const BBox& b) { return (b.lo + b.hi) * 0.5; }
+Vec3 centre(const BBox& b) {
+    return (b.lo + b.hi) * 0.5;
+}
 
 bool boxes_overlap(const BBox& a, const BBox& b) {
     return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y &&
@@ -95,7 +97,8 @@ std::int32_t SurfaceBvh::build(std::uint32_t first, std::uint32_t count) {
         return index;
     }
     const Vec3 extent = centres.hi - centres.lo;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    const int axis =
+        extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     const std::uint32_t half = count / 2;
     std::nth_element(order_.begin() + first, order_.begin() + first + half,
                      order_.begin() + first + count, [&](std::uint32_t a, std::uint32_t b) {

@@ -25,8 +25,8 @@
 #include <CGAL/exceptions.h>
 
 #include "constraint_cleanup.h"
-#include "size_field.h"
 #include "core/error.h"
+#include "size_field.h"
 
 namespace penumbra::mesher {
 
@@ -34,10 +34,10 @@ namespace {
 
 struct FaceInfo {
     std::int32_t region = -1;
-    std::int32_t index = -1;    ///< dense index among the final faces in a region
-    bool inside = false;        ///< inside the outline (before refinement)
-    bool reached = false;       ///< visited by the inside/outside flood
-    std::uint8_t outline = 0;   ///< bit i: edge i is a piece of the outline
+    std::int32_t index = -1;  ///< dense index among the final faces in a region
+    bool inside = false;      ///< inside the outline (before refinement)
+    bool reached = false;     ///< visited by the inside/outside flood
+    std::uint8_t outline = 0; ///< bit i: edge i is a piece of the outline
 };
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -108,12 +108,16 @@ private:
     const SizeField* field_;
 };
 
-Point to_point(const Vec2& p) { return Point(p.x, p.y); }
-Vec2 to_vec(const Point& p) { return {p.x(), p.y()}; }
+Point to_point(const Vec2& p) {
+    return Point(p.x, p.y);
+}
+Vec2 to_vec(const Point& p) {
+    return {p.x(), p.y()};
+}
 
 double face_area(const Face_handle& f) {
-    return std::abs(CGAL::area(f->vertex(0)->point(), f->vertex(1)->point(),
-                               f->vertex(2)->point()));
+    return std::abs(
+        CGAL::area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()));
 }
 
 // Inserts the noded outline edges and segments (they meet only at shared endpoints), marks
@@ -169,8 +173,8 @@ bool crease(const Cdt& cdt, const Face_handle& f) {
     double longest = 0;
     int apex = 0;
     for (int i = 0; i < 3; ++i) {
-        const double l2 = CGAL::squared_distance(f->vertex(Cdt::ccw(i))->point(),
-                                                 f->vertex(Cdt::cw(i))->point());
+        const double l2 =
+            CGAL::squared_distance(f->vertex(Cdt::ccw(i))->point(), f->vertex(Cdt::cw(i))->point());
         if (l2 > longest) {
             longest = l2;
             apex = i;
@@ -228,8 +232,8 @@ void SurfaceTriangulator::Impl::label_regions() {
             const double a = face_area(f);
             double perimeter = 0;
             for (int i = 0; i < 3; ++i)
-                perimeter += std::sqrt(CGAL::squared_distance(f->vertex(i)->point(),
-                                                              f->vertex((i + 1) % 3)->point()));
+                perimeter += std::sqrt(
+                    CGAL::squared_distance(f->vertex(i)->point(), f->vertex((i + 1) % 3)->point()));
             info.area += a;
             if (2 * a / perimeter > best) {
                 best = 2 * a / perimeter;
@@ -321,9 +325,13 @@ SurfaceTriangulator::SurfaceTriangulator(const std::vector<Vec2>& outline,
 
 SurfaceTriangulator::~SurfaceTriangulator() = default;
 
-std::vector<RegionInfo>& SurfaceTriangulator::regions() { return impl_->regions; }
+std::vector<RegionInfo>& SurfaceTriangulator::regions() {
+    return impl_->regions;
+}
 
-const std::vector<RegionInfo>& SurfaceTriangulator::regions() const { return impl_->regions; }
+const std::vector<RegionInfo>& SurfaceTriangulator::regions() const {
+    return impl_->regions;
+}
 
 std::int32_t SurfaceTriangulator::region_of(const Vec2& p) const {
     Face_handle hint;
@@ -331,7 +339,6 @@ std::int32_t SurfaceTriangulator::region_of(const Vec2& p) const {
 }
 
 namespace {
-
 
 bool visible(const FinalFaces& ff, const std::vector<RegionInfo>& regions, const Face_handle& f,
              int side) {
@@ -489,12 +496,12 @@ SurfaceTriangulation SurfaceTriangulator::refine_impl(const std::vector<Segment2
         if (!f->is_constrained(i))
             return false;
         const Vertex_handle a = f->vertex(Cdt::ccw(i)), b = f->vertex(Cdt::cw(i));
-        const std::uint64_t key = (std::uint64_t(std::min(a->info(), b->info())) << 32) |
-                                  std::max(a->info(), b->info());
+        const std::uint64_t key =
+            (std::uint64_t(std::min(a->info(), b->info())) << 32) | std::max(a->info(), b->info());
         auto [it, fresh] = cut_cache.try_emplace(key, false);
         if (fresh)
-            it->second = impl_->on_cut((to_vec(a->point()) + to_vec(b->point())) * 0.5,
-                                       impl_->merge);
+            it->second =
+                impl_->on_cut((to_vec(a->point()) + to_vec(b->point())) * 0.5, impl_->merge);
         return it->second;
     };
     for (int side = 0; side < (settings.two_sided ? 2 : 1); ++side)

@@ -14,18 +14,18 @@ namespace penumbra::mesher {
 
 /// A region of the surface between contact lines, with what is hidden there.
 struct RegionInfo {
-    Vec2 sample;            ///< a point well inside the region
-    double inradius = 0;    ///< of the triangle the sample is the centroid of
+    Vec2 sample;         ///< a point well inside the region
+    double inradius = 0; ///< of the triangle the sample is the centroid of
     double area = 0;
     bool hidden[2] = {false, false}; ///< front, back
 };
 
 struct RefineSettings {
-    double max_edge = 0; ///< longest element edge
-    double near_factor = 1; ///< size bound on the extra constraints, relative to max_edge
-    double min_edge = 0; ///< faces with a shorter edge are not refined for their angles
-    double snap = 0;     ///< distance below which a point lies on a line
-    double nudge = 0;    ///< vertex copies on a contact line move this far into their wedge
+    double max_edge = 0;       ///< longest element edge
+    double near_factor = 1;    ///< size bound on the extra constraints, relative to max_edge
+    double min_edge = 0;       ///< faces with a shorter edge are not refined for their angles
+    double snap = 0;           ///< distance below which a point lies on a line
+    double nudge = 0;          ///< vertex copies on a contact line move this far into their wedge
     std::size_t max_steps = 0; ///< refinement insertions before giving up
     bool two_sided = true;
 };

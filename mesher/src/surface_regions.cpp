@@ -50,7 +50,8 @@ bool covered(const std::vector<Cover>& covers, const Vec2& p, int side) {
 using Flags = std::vector<std::vector<std::array<bool, 2>>>; // [surface][region][side]
 
 // One classification pass over every region side not yet hidden.
-Flags classify_pass(const std::vector<Surface>& surfaces, const std::vector<SurfaceContacts>& contacts,
+Flags classify_pass(const std::vector<Surface>& surfaces,
+                    const std::vector<SurfaceContacts>& contacts,
                     const std::vector<PreparedSurface>& prepared, const EnclosureTest& enclosure,
                     const Flags& previous, bool use_previous, const Context& ctx) {
     Flags next = previous;
@@ -104,19 +105,20 @@ void classify_regions(const Scene& scene, const std::vector<Surface>& surfaces,
 
 } // namespace
 
-std::vector<PreparedSurface> prepare_surfaces(
-    const Scene& scene, const std::vector<Surface>& surfaces, const SurfaceBvh& bvh,
-    const std::vector<SurfaceContacts>& contacts,
-    const std::vector<std::vector<ReceiverSegment>>& discontinuities, const MeshParams& params,
-    const Context& ctx) {
+std::vector<PreparedSurface>
+prepare_surfaces(const Scene& scene, const std::vector<Surface>& surfaces, const SurfaceBvh& bvh,
+                 const std::vector<SurfaceContacts>& contacts,
+                 const std::vector<std::vector<ReceiverSegment>>& discontinuities,
+                 const MeshParams& params, const Context& ctx) {
     std::vector<PreparedSurface> prepared(surfaces.size());
     run_in_arena(ctx, [&] {
         parallel_for_index(surfaces.size(), 4, [&](std::size_t i) {
             try {
                 prepared[i] = prepare_one(surfaces[i], contacts[i], discontinuities[i], params);
             } catch (const ExternalError& e) {
-                throw InputError("", "", fmt::format(
-                    "cannot triangulate surface {}: {}", surfaces[i].name, e.what()));
+                throw InputError(
+                    "", "",
+                    fmt::format("cannot triangulate surface {}: {}", surfaces[i].name, e.what()));
             }
         });
     });

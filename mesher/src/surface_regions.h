@@ -25,10 +25,10 @@ struct PreparedSurface {
 ///        triangulation and marks the hidden side(s) of every region (inside a cover, or
 ///        enclosed by EnclosureTest, repeated until stable so that a region whose probes only
 ///        meet hidden sides is hidden too).
-std::vector<PreparedSurface> prepare_surfaces(
-    const Scene& scene, const std::vector<Surface>& surfaces, const SurfaceBvh& bvh,
-    const std::vector<SurfaceContacts>& contacts,
-    const std::vector<std::vector<ReceiverSegment>>& discontinuities, const MeshParams& params,
-    const Context& ctx);
+std::vector<PreparedSurface>
+prepare_surfaces(const Scene& scene, const std::vector<Surface>& surfaces, const SurfaceBvh& bvh,
+                 const std::vector<SurfaceContacts>& contacts,
+                 const std::vector<std::vector<ReceiverSegment>>& discontinuities,
+                 const MeshParams& params, const Context& ctx);
 
 } // namespace penumbra::mesher

@@ -146,8 +146,7 @@ std::vector<Candidate> nearby_planes(const std::vector<Surface>& pre, const Surf
 // The vertex moved onto the nearby planes it can reach inside its own plane.
 Vec3 snapped_vertex(const std::vector<Surface>& pre, const SurfaceBvh& bvh, const Vec3& v,
                     const Vec3& own_normal, std::uint32_t own_polygon, const MeshParams& params) {
-    const std::vector<Candidate> near =
-        nearby_planes(pre, bvh, v, own_polygon, params.contact_tol);
+    const std::vector<Candidate> near = nearby_planes(pre, bvh, v, own_polygon, params.contact_tol);
     std::vector<PlaneRow> rows{{own_normal, 0.0}};
     std::vector<Vec3> basis{own_normal};
     bool moves = false;
@@ -218,8 +217,8 @@ std::vector<std::vector<Vec3>> close_near_contacts(const Scene& scene, const Mes
         if (length(own_normal[pi]) == 0)
             continue;
         for (std::size_t k = 0; k < out[pi].size(); ++k) // from the original positions only
-            out[pi][k] = snapped_vertex(pieces, bvh, scene.polygons[pi].vertices[k],
-                                        own_normal[pi], pi, params);
+            out[pi][k] = snapped_vertex(pieces, bvh, scene.polygons[pi].vertices[k], own_normal[pi],
+                                        pi, params);
     }
     return out;
 }
@@ -241,7 +240,8 @@ std::vector<Surface> build_surfaces(const Scene& scene, const MeshParams& params
                      name);
         else if (pieces.empty())
             ctx.warn("mesh: polygon {} is thinner than mesher.contact_tolerance and collapses "
-                     "when near-contacts are closed; skipped", name);
+                     "when near-contacts are closed; skipped",
+                     name);
         for (const PlanarPiece& piece : pieces) {
             Surface s;
             if (!make_surface(piece.outline, s))

@@ -17,13 +17,13 @@ namespace penumbra::mesher {
 
 /// Settings of one meshing run, resolved to metres.
 struct MeshParams {
-    double diagonal = 0;     ///< scene bounding-box diagonal
-    double max_edge = 0;     ///< longest element edge
-    double min_edge = 0;     ///< faces with a shorter edge are not refined for their angles
-    double contact_tol = 0;  ///< gaps up to this are contacts
-    double snap = 0;         ///< points closer than this are merged (2e-7 × diagonal)
-    double merge = 0;        ///< constraint points, and parallel lines, closer than this merge
-    double nudge = 0;        ///< vertex copies on a contact line move this far off it
+    double diagonal = 0;    ///< scene bounding-box diagonal
+    double max_edge = 0;    ///< longest element edge
+    double min_edge = 0;    ///< faces with a shorter edge are not refined for their angles
+    double contact_tol = 0; ///< gaps up to this are contacts
+    double snap = 0;        ///< points closer than this are merged (2e-7 × diagonal)
+    double merge = 0;       ///< constraint points, and parallel lines, closer than this merge
+    double nudge = 0;       ///< vertex copies on a contact line move this far off it
     bool split_contacts = true;
     int max_order = 2;       ///< highest discontinuity order inserted; -1 = none
     std::int64_t budget = 0; ///< most elements; 0 = no limit
@@ -33,7 +33,7 @@ struct MeshParams {
 struct Surface {
     std::uint32_t polygon = 0;
     std::uint32_t id = 0;
-    Vec3 normal;  ///< unit, front side
+    Vec3 normal;       ///< unit, front side
     double offset = 0; ///< dot(normal, p) for p on the plane
     Vec3 origin, axis_u, axis_v;
     std::vector<Vec3> outline;   ///< counter-clockwise around normal

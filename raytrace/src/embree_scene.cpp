@@ -265,7 +265,9 @@ EmbreeScene::~EmbreeScene() = default;
 namespace {
 
 /// The ray of an RTCRay or RTCRayHit (whose hit it marks empty).
-RTCRay& ray_of(RTCRay& ray) { return ray; }
+RTCRay& ray_of(RTCRay& ray) {
+    return ray;
+}
 RTCRay& ray_of(RTCRayHit& rayhit) {
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
@@ -315,8 +317,7 @@ void EmbreeScene::occluded(std::span<const Segment> segments, std::span<std::uin
         });
 }
 
-void EmbreeScene::first_hit(std::span<const Segment> segments,
-                            std::span<std::int32_t> hit) const {
+void EmbreeScene::first_hit(std::span<const Segment> segments, std::span<std::int32_t> hit) const {
     trace_batches<RTCRayHit>(
         "first_hit", "rtcIntersect1M", segments, hit.size(),
         [&](RTCIntersectContext* context, RTCRayHit* rays, unsigned count) {

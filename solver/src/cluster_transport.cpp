@@ -70,8 +70,7 @@ SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterVa
                 lobe_projection(cv.exitance[c], toward_receiver) * scale};
     }
     const std::uint32_t p = link.source;
-    const float f =
-        scale * float(h.area[p] * std::max(0.0, dot(h.normal[p], toward_receiver)));
+    const float f = scale * float(h.area[p] * std::max(0.0, dot(h.normal[p], toward_receiver)));
     return {increment ? Rgb{} : h.emission[p] * f, b[p] * f};
 }
 
@@ -91,9 +90,8 @@ void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std:
 
 void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const LinkSet& links,
                           const std::vector<Rgb>& b, ClusterValues& cv,
-                          std::vector<Rgb>& gathered_direct,
-                          std::vector<Rgb>& gathered_indirect, bool increment,
-                          bool exact_emitted) {
+                          std::vector<Rgb>& gathered_direct, std::vector<Rgb>& gathered_indirect,
+                          bool increment, bool exact_emitted) {
     const auto& all = links.cluster_links();
     const auto& by_element = links.cluster_offsets_elements();
     const auto& by_cluster = links.cluster_offsets_clusters();
@@ -106,8 +104,7 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
                 continue;
             const SourceTerm s = source_term(h, links, cv, means, b, l, increment, exact_emitted);
             // An exact link's F holds the cosines.
-            const float cosine =
-                l.exact ? 1.0f : float(std::max(0.0, dot(h.normal[q], Vec3(l.d))));
+            const float cosine = l.exact ? 1.0f : float(std::max(0.0, dot(h.normal[q], Vec3(l.d))));
             direct += s.emitted * cosine;
             indirect += (s.total - s.emitted) * cosine;
         }

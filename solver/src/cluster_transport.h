@@ -11,21 +11,21 @@
 namespace penumbra::solver {
 
 struct ClusterValues {
-    std::vector<Lobes> exitance_emitted;  ///< Σ E A cos lobes per cluster (fixed)
-    std::vector<Lobes> exitance;          ///< Σ B A cos lobes per cluster
-    std::vector<Slope> gradient_emitted;  ///< of the emission over each face cluster (fixed)
-    std::vector<Slope> gradient;          ///< of the radiosity over each face cluster
-    std::vector<float> peak;              ///< largest radiosity of a root (largest channel)
+    std::vector<Lobes> exitance_emitted; ///< Σ E A cos lobes per cluster (fixed)
+    std::vector<Lobes> exitance;         ///< Σ B A cos lobes per cluster
+    std::vector<Slope> gradient_emitted; ///< of the emission over each face cluster (fixed)
+    std::vector<Slope> gradient;         ///< of the radiosity over each face cluster
+    std::vector<float> peak;             ///< largest radiosity of a root (largest channel)
     /// Of a face cluster: twice the largest departure of its roots' radiosity from its linear
     /// fit (largest channel; 0 for volume clusters): what a source sending the fit's value
     /// may be off by (weigh_departures).
     std::vector<float> departure;
-    std::vector<Lobes> gathered_direct;   ///< irradiance lobes gathered by each cluster
+    std::vector<Lobes> gathered_direct; ///< irradiance lobes gathered by each cluster
     std::vector<Lobes> gathered_indirect;
     /// Per face cluster, the gradient (W/m² per metre, by world axis) that its exact links
     /// add to the irradiance across its plane, about its centroid (set by the gather).
     std::vector<Slope> slope_direct, slope_indirect;
-    std::vector<Rgb> root_direct;         ///< irradiance pushed down to each root
+    std::vector<Rgb> root_direct; ///< irradiance pushed down to each root
     std::vector<Rgb> root_indirect;
 };
 

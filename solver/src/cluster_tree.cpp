@@ -43,9 +43,8 @@ std::size_t median_split(const std::vector<Vec3>& point, std::vector<std::uint32
     for (std::size_t i = begin; i < end; ++i)
         bounds.extend(point[order[i]]);
     const Vec3 extent = bounds.hi - bounds.lo;
-    const std::size_t axis = extent.x >= extent.y && extent.x >= extent.z
-                                 ? 0
-                                 : (extent.y >= extent.z ? 1 : 2);
+    const std::size_t axis =
+        extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
     const std::size_t mid = (begin + end) / 2;
     std::nth_element(order.begin() + std::ptrdiff_t(begin), order.begin() + std::ptrdiff_t(mid),
                      order.begin() + std::ptrdiff_t(end), [&](std::uint32_t a, std::uint32_t b) {
@@ -68,8 +67,8 @@ std::vector<std::vector<std::uint32_t>> planar_groups(const Hierarchy& h) {
         const Vec3& nn = h.normal[r];
         const double offset = dot(nn, h.triangle[r][0]);
         for (const Vec3& v : h.triangle[r])
-            corners.push_back({Key{q(nn.x, 1e-6), q(nn.y, 1e-6), q(nn.z, 1e-6), q(offset, 1e3 * step),
-                                   q(v.x, step), q(v.y, step), q(v.z, step)},
+            corners.push_back({Key{q(nn.x, 1e-6), q(nn.y, 1e-6), q(nn.z, 1e-6),
+                                   q(offset, 1e3 * step), q(v.x, step), q(v.y, step), q(v.z, step)},
                                r});
     }
     std::sort(corners.begin(), corners.end());

@@ -27,9 +27,15 @@ namespace penumbra::solver {
 /// (the top bit set; the rest is the index in the ClusterTree).
 using NodeRef = std::uint32_t;
 inline constexpr NodeRef k_cluster_bit = 0x80000000u;
-constexpr bool is_cluster(NodeRef n) { return (n & k_cluster_bit) != 0; }
-constexpr NodeRef cluster_ref(std::uint32_t c) { return c | k_cluster_bit; }
-constexpr std::uint32_t cluster_index(NodeRef n) { return n & ~k_cluster_bit; }
+constexpr bool is_cluster(NodeRef n) {
+    return (n & k_cluster_bit) != 0;
+}
+constexpr NodeRef cluster_ref(std::uint32_t c) {
+    return c | k_cluster_bit;
+}
+constexpr std::uint32_t cluster_index(NodeRef n) {
+    return n & ~k_cluster_bit;
+}
 
 /// Values in the six axis lobes, index 2a for +a and 2a + 1 for −a.
 using Lobes = std::array<Rgb, 6>;
@@ -58,7 +64,9 @@ inline Vec3 fit_gradient(const Frame& frame, double css, double ctt, double cst,
 }
 
 /// Index of the lobe along axis \p a that holds direction component \p component.
-constexpr int lobe_index(int a, double component) { return 2 * a + (component < 0 ? 1 : 0); }
+constexpr int lobe_index(int a, double component) {
+    return 2 * a + (component < 0 ? 1 : 0);
+}
 
 /// Σ_a |v_a| · lobes[a, sign v_a]: a surface (or cluster) of lobes \p lobes seen along v.
 Rgb lobe_projection(const Lobes& lobes, const Vec3& v);
@@ -75,9 +83,9 @@ struct ClusterLevels {
 };
 
 struct ClusterTree {
-    std::vector<Vec3> lo, hi;   ///< bounds of the elements' vertices
-    std::vector<double> area;   ///< summed area of the elements
-    std::vector<Vec3> centroid; ///< area-weighted centroid of the elements
+    std::vector<Vec3> lo, hi;         ///< bounds of the elements' vertices
+    std::vector<double> area;         ///< summed area of the elements
+    std::vector<Vec3> centroid;       ///< area-weighted centroid of the elements
     std::vector<std::int32_t> parent; ///< −1 for the top cluster (index 0)
     /// Children of cluster c are children[child_begin[c] .. child_begin[c + 1]): clusters, or
     /// root elements in leaf clusters. Parents precede their children.

@@ -143,9 +143,10 @@ SphericalSample sample_spherical_triangle(const Vec3& a, const Vec3& b, const Ve
     const double s = std::sin(area - alpha), t = std::cos(area - alpha);
     const double u = t - std::cos(alpha), v = s + std::sin(alpha) * dot(a, b);
     const double denominator = (v * s + u * t) * std::sin(alpha);
-    const double q = denominator != 0
-                         ? std::clamp(((v * t - u * s) * std::cos(alpha) - v) / denominator, -1.0, 1.0)
-                         : 1.0;
+    const double q =
+        denominator != 0
+            ? std::clamp(((v * t - u * s) * std::cos(alpha) - v) / denominator, -1.0, 1.0)
+            : 1.0;
     const Vec3 c_hat = a * q + normalize(c - a * dot(c, a)) * std::sqrt(1 - q * q);
     // Then a point on the arc from b to ĉ.
     const double z = std::clamp(1 - u2 * (1 - dot(c_hat, b)), -1.0, 1.0);
@@ -164,9 +165,8 @@ SphericalSample sample_spherical_triangle(const Vec3& a, const Vec3& b, const Ve
 // by area (weight K). As many probes as points (4 to 16) first; \p rays more unless all were
 // open.
 PairVisibility pair_visibility(const Quadrature& quad, const PointValues& f,
-                               const OrientedTriangle& a, const OrientedTriangle& b,
-                               double offset, int rays, const VisibilityQuery& visibility,
-                               Pcg32& rng) {
+                               const OrientedTriangle& a, const OrientedTriangle& b, double offset,
+                               int rays, const VisibilityQuery& visibility, Pcg32& rng) {
     PairVisibility out;
     std::array<double, k_max_quadrature_points + 1> running{};
     for (std::size_t i = 0; i < quad.count; ++i)
@@ -200,8 +200,8 @@ PairVisibility pair_visibility(const Quadrature& quad, const PointValues& f,
             const double u = (double(j) + rng.next_double()) / double(n) * total;
             const auto it = std::upper_bound(running.begin() + 1,
                                              running.begin() + std::ptrdiff_t(quad.count) + 1, u);
-            const auto i = std::size_t(std::clamp<std::ptrdiff_t>(
-                it - running.begin() - 1, 0, std::ptrdiff_t(quad.count) - 1));
+            const auto i = std::size_t(std::clamp<std::ptrdiff_t>(it - running.begin() - 1, 0,
+                                                                  std::ptrdiff_t(quad.count) - 1));
             const Vec3 x = quad.jittered(i, rng.next_double(), rng.next_double());
             const double u1 = rng.next_double(), u2 = rng.next_double();
             Vec3 y;
@@ -223,8 +223,7 @@ PairVisibility pair_visibility(const Quadrature& quad, const PointValues& f,
                 const Vec3 d = y - x;
                 const double r2 = dot(d, d);
                 if (r2 > 0)
-                    w = std::max(0.0, dot(a.n, d)) * std::max(0.0, -dot(b.n, d)) /
-                        (r2 * r2 * f[i]);
+                    w = std::max(0.0, dot(a.n, d)) * std::max(0.0, -dot(b.n, d)) / (r2 * r2 * f[i]);
             }
             const Vec3 from = x + lift_a, to = y + lift_b;
             segments.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
@@ -275,9 +274,9 @@ int quadrature_level_for(const OrientedTriangle& a, const OrientedTriangle& b,
     // (Jensen): resolve a finely enough relative to the distance, whatever b's size.
     const Vec3 ca = (a.v[0] + a.v[1] + a.v[2]) / 3.0, cb = (b.v[0] + b.v[1] + b.v[2]) / 3.0;
     const double ratio = longest_edge(a.v) / std::max(length(cb - ca), 1e-300);
-    const int level = ratio < 0.1 ? settings.quadrature_level
-                                  : (ratio < 0.4 ? settings.quadrature_level + 1
-                                                 : settings.quadrature_level + 2);
+    const int level =
+        ratio < 0.1 ? settings.quadrature_level
+                    : (ratio < 0.4 ? settings.quadrature_level + 1 : settings.quadrature_level + 2);
     return std::min(level, settings.near_quadrature_level);
 }
 
@@ -305,8 +304,8 @@ PairFormFactor triangle_form_factor_visible(const OrientedTriangle& a, const Ori
     return result;
 }
 
-PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTriangle& b,
-                                    int level, const VisibilityQuery& visibility, double offset,
+PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTriangle& b, int level,
+                                    const VisibilityQuery& visibility, double offset,
                                     std::uint64_t key_a, std::uint64_t key_b,
                                     const RowSettings& settings) {
     const Quadrature quad = make_quadrature(a.v, level);
@@ -314,8 +313,8 @@ PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTri
     PairFormFactor result = unoccluded(a, b, quad, f_point);
     if (result.f_unoccluded <= 0)
         return result;
-    Pcg32 rng = Pcg32::for_stream(RngPurpose::form_factor_visibility, key_a, key_b, 0,
-                                  settings.seed);
+    Pcg32 rng =
+        Pcg32::for_stream(RngPurpose::form_factor_visibility, key_a, key_b, 0, settings.seed);
     const PairVisibility v =
         pair_visibility(quad, f_point, a, b, offset, settings.visibility_rays, visibility, rng);
     result.f = result.f_unoccluded * v.fraction;

@@ -23,7 +23,7 @@ struct ElementGeometry {
     std::vector<double> area;
     std::vector<std::int32_t> twin;
     std::vector<std::uint8_t> emitter; ///< the element emits light
-    double offset = 0; ///< ray-origin offset along normals, metres
+    double offset = 0;                 ///< ray-origin offset along normals, metres
     double diagonal = 0;
 
     explicit ElementGeometry(const RadiosityMesh& mesh);
@@ -34,11 +34,11 @@ struct ElementGeometry {
 };
 
 struct RowSettings {
-    int quadrature_level = 1;      ///< 4^level points on the shooter for distant receivers
-    int near_quadrature_level = 3; ///< for receivers within about one element size
+    int quadrature_level = 1;       ///< 4^level points on the shooter for distant receivers
+    int near_quadrature_level = 3;  ///< for receivers within about one element size
     int apart_quadrature_level = 3; ///< the same for such receivers that share no vertex
-    int visibility_rays = 16; ///< per receiver, spread over the quadrature points
-    int escape_rays = 64;     ///< cosine rays per shooter that estimate the escaping fraction
+    int visibility_rays = 16;       ///< per receiver, spread over the quadrature points
+    int escape_rays = 64;           ///< cosine rays per shooter that estimate the escaping fraction
     int escape_rays_emitter = 4096; ///< the same for emitters, which carry the direct power
     std::uint64_t seed = 0;
 };
@@ -57,8 +57,8 @@ struct PairFormFactor {
 ///        points in proportion to their share of the transfer, from a stream keyed by
 ///        (key_a, key_b, seed): as many probes as points (4 to 16), \p visibility_rays more
 ///        unless all were open. The caller checks that a and b face each other.
-PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTriangle& b,
-                                    int level, const VisibilityQuery& visibility, double offset,
+PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTriangle& b, int level,
+                                    const VisibilityQuery& visibility, double offset,
                                     std::uint64_t key_a, std::uint64_t key_b,
                                     const RowSettings& settings);
 

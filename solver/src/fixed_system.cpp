@@ -89,8 +89,8 @@ FixedSystem build_fixed_system(const Scene& scene, const RadiosityMesh& mesh,
 }
 
 ElementResult solve_gathering(const FixedSystem& s, const ElementGeometry& geo,
-                              const SolverSettings& settings, bool gauss_seidel,
-                              const Context& ctx, SolveStats* stats) {
+                              const SolverSettings& settings, bool gauss_seidel, const Context& ctx,
+                              SolveStats* stats) {
     const std::size_t n = s.size();
     ElementResult r{s.emission, std::vector<Rgb>(n), std::vector<Rgb>(n)};
     const double emitted = emitted_power_sum(s, geo);
@@ -163,8 +163,8 @@ ElementResult solve_matrix(const FixedSystem& s, const ElementGeometry& geo, con
     return r;
 }
 
-PowerBalance fixed_balance(const FixedSystem& s, const ElementGeometry& geo,
-                           const ElementResult& r, double unconverged_power_fraction) {
+PowerBalance fixed_balance(const FixedSystem& s, const ElementGeometry& geo, const ElementResult& r,
+                           double unconverged_power_fraction) {
     PowerBalance pb;
     pb.emitted = s.light_emitted;
     pb.escaped = s.light_escaped;

@@ -18,8 +18,8 @@ namespace penumbra::solver {
 struct FixedSystem {
     std::vector<std::uint32_t> offset; ///< CSR by receiver: entries offset[j] .. offset[j+1]
     std::vector<std::uint32_t> source;
-    std::vector<float> k;              ///< K_ji
-    std::vector<double> escape;        ///< per source element, fraction of its power escaping
+    std::vector<float> k;       ///< K_ji
+    std::vector<double> escape; ///< per source element, fraction of its power escaping
     std::vector<Rgb> emission, reflectance;
     std::vector<Rgb> light_direct;     ///< irradiance from point lights, per element
     RgbD light_emitted, light_escaped; ///< W
@@ -33,8 +33,8 @@ FixedSystem build_fixed_system(const Scene& scene, const RadiosityMesh& mesh,
 /// \brief Jacobi (or in-place Gauss–Seidel, in element order) sweeps until the power changing
 ///        per sweep falls below settings.residual of the emitted power.
 ElementResult solve_gathering(const FixedSystem& system, const ElementGeometry& geo,
-                              const SolverSettings& settings, bool gauss_seidel,
-                              const Context& ctx, SolveStats* stats);
+                              const SolverSettings& settings, bool gauss_seidel, const Context& ctx,
+                              SolveStats* stats);
 
 /// \brief Dense LU (Eigen) of (I − ρK) B = E + ρL per channel. For small scenes and tests.
 /// \throws ConfigError above 6000 elements.

@@ -16,8 +16,7 @@ namespace penumbra::solver {
 /// \brief Form factor from a differential area at \p x with unit normal \p n to the planar
 ///        polygon \p poly (any winding). The part of the polygon below x's tangent plane is
 ///        clipped away. The caller checks that the polygon's emitting side faces x.
-double form_factor_point_polygon(const Vec3& x, const Vec3& n, const Vec3* poly,
-                                 std::size_t count);
+double form_factor_point_polygon(const Vec3& x, const Vec3& n, const Vec3* poly, std::size_t count);
 
 /// \brief atan(t) for t in [0, 1], within 6.1e-11 of it relatively: a polynomial in t²
 ///        (least squares at Chebyshev nodes, degree 11) in Estrin's scheme, with no branch and

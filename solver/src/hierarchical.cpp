@@ -1,10 +1,10 @@
 // Hierarchical radiosity (Hanrahan, Salzman & Aupperle 1991). Every mesh element is the root
 // of a 1-to-4 hierarchy; links between nodes are refined by the BF oracle (the irradiance a
 // link brings, F_qp B_p, against ε × the brightest source's exitance, partly occluded links
-// counted double) down to a minimum area; a Jacobi gathering sweep over the links is followed by push-pull over the
-// hierarchy (irradiance gathered at a node applies to all its descendants; radiosity is pulled
-// up as the area mean). Reflectors have no radiosity before the first solve, so refinement
-// and solving alternate until refinement changes nothing, or next to nothing.
+// counted double) down to a minimum area; a Jacobi gathering sweep over the links is followed by
+// push-pull over the hierarchy (irradiance gathered at a node applies to all its descendants;
+// radiosity is pulled up as the area mean). Reflectors have no radiosity before the first solve, so
+// refinement and solving alternate until refinement changes nothing, or next to nothing.
 //
 // Deviations: form factors are receiver-side quadratures of the analytic point-to-triangle
 // form factor (4 points, 64 for near pairs) times ray visibility, rather than Hanrahan's
@@ -135,8 +135,7 @@ LeafDirect leaf_direct(const Hierarchy& h, const LinkSet& links, Clusters& clust
     std::vector<Rgb> root_direct;
     if (clusters.enabled) { // the direct part alone
         ClusterValues& cv = clusters.values;
-        gather_cluster_links(h, clusters.tree, links, b, cv, cluster_direct, unused, false,
-                             false);
+        gather_cluster_links(h, clusters.tree, links, b, cv, cluster_direct, unused, false, false);
         push_clusters(clusters.tree, h, cv);
         root_direct = std::move(cv.root_direct);
     }
@@ -262,8 +261,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
         else
             links.link_clusters(clusters.tree, cv.exitance, cv.exitance_emitted, cv.peak,
                                 cv.departure);
-        ctx.info("hierarchical: {} clusters over {} elements", clusters.tree.size(),
-                 h.root_count);
+        ctx.info("hierarchical: {} clusters over {} elements", clusters.tree.size(), h.root_count);
     }
     if (reuse) {
         links.restore(reuse->links.span(), reuse->cluster_links.span());
@@ -387,24 +385,23 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     links.release_refinement_tables();
     const DirectEmitters emitters{root_geo, direct_sources(scene, root_emission), &sources.near,
                                   &sources.far};
-    result.solution = make_solution(scene, out_mesh, geo, std::move(er), visibility,
-                                    row_settings, ctx, &emitters);
+    result.solution = make_solution(scene, out_mesh, geo, std::move(er), visibility, row_settings,
+                                    ctx, &emitters);
     ctx.debug("hierarchical: leaf mesh, vertices and sensors {:.2f} s", seconds_since(t0));
     t0 = Clock::now();
     if (stats) {
         stats->shots = log.total;
         stats->links = links.link_count();
-        stats->power = hierarchical_balance(scene, out_mesh, geo, result.solution, visibility,
-                                            row_settings, stats->residual_history.empty()
-                                                              ? 0.0
-                                                              : stats->residual_history.back(),
-                                            links.sun_power());
+        stats->power = hierarchical_balance(
+            scene, out_mesh, geo, result.solution, visibility, row_settings,
+            stats->residual_history.empty() ? 0.0 : stats->residual_history.back(),
+            links.sun_power());
         ctx.debug("hierarchical: power balance {:.2f} s", seconds_since(t0));
     }
     // The last pass is the solution itself where it lives on the roots.
     if (observer && observer->on_pass)
-        observer->on_pass(subdivided ? root_snapshot(mesh, h, v) : result.solution, log.total,
-                          0.0, true);
+        observer->on_pass(subdivided ? root_snapshot(mesh, h, v) : result.solution, log.total, 0.0,
+                          true);
     auto state = std::make_shared<HierarchicalState>();
     state->mesh_hash = mesh_geometry_hash(mesh);
     state->clustered = clustered;

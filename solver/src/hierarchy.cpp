@@ -32,10 +32,8 @@ void Hierarchy::subdivide(std::uint32_t n) {
     const auto t = triangle[n];
     auto mid = [](const Vec3& a, const Vec3& b) { return (a + b) * 0.5; };
     const Vec3 m01 = mid(t[0], t[1]), m12 = mid(t[1], t[2]), m20 = mid(t[2], t[0]);
-    const std::array<std::array<Vec3, 3>, 4> kids{{{t[0], m01, m20},
-                                                   {m01, t[1], m12},
-                                                   {m20, m12, t[2]},
-                                                   {m12, m20, m01}}};
+    const std::array<std::array<Vec3, 3>, 4> kids{
+        {{t[0], m01, m20}, {m01, t[1], m12}, {m20, m12, t[2]}, {m12, m20, m01}}};
     first_child[n] = std::int32_t(size());
     for (const auto& k : kids) {
         triangle.push_back(k);

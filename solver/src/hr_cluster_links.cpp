@@ -64,7 +64,9 @@ constexpr double k_exact_slack = 7.5;
 
 /// Whether a pair of ends whose centres are \p r apart and whose bounding radii sum to
 /// \p radii may exchange light through one cluster link (k_admissible).
-bool admissible(double r, double radii) { return radii < k_admissible * r; }
+bool admissible(double r, double radii) {
+    return radii < k_admissible * r;
+}
 constexpr int k_facing_tries = 8;
 /// Largest factor the true cosines may scale a cluster link's kernel by (cast_cluster_rays).
 constexpr double k_max_calibration = 4.0;
@@ -108,8 +110,7 @@ enum ClusterDecision : std::uint8_t { keep = 0, split_receiver, split_source, sp
 
 } // namespace
 
-template <typename Fn>
-void LinkSet::for_each_child(NodeRef n, Fn&& fn) const {
+template <typename Fn> void LinkSet::for_each_child(NodeRef n, Fn&& fn) const {
     if (is_cluster(n)) {
         const std::uint32_t c = cluster_index(n);
         for (std::uint32_t k = tree_->child_begin[c]; k < tree_->child_begin[c + 1]; ++k)
@@ -294,8 +295,8 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     const NodeRef q = link.receiver, p = link.source;
     const Vec3 cq = node_centre(q), cp = node_centre(p);
     const double closest = 0.25 * (node_radius(q) + node_radius(p));
-    Pcg32 rng = Pcg32::for_stream(RngPurpose::cluster_visibility, q, p, link.rays,
-                                  settings_.rows.seed);
+    Pcg32 rng =
+        Pcg32::for_stream(RngPurpose::cluster_visibility, q, p, link.rays, settings_.rows.seed);
     const double rc = length(cp - cq);
     const Vec3 dc = rc > 0 ? (cp - cq) / rc : Vec3(0, 0, 1);
     // Per ray: the point kernel 1/(π d²), the true one (cos_q cos_p / (π d²)) and the cosines'
@@ -322,8 +323,7 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
         kernel.push_back(1.0 / (k_pi * dd));
         const double length_qp = length(xp - xq);
         const Vec3 w = length_qp > 0 ? (xp - xq) / length_qp : dc;
-        true_kernel.push_back(std::max(0.0, dot(nq, w)) * std::max(0.0, -dot(np, w)) /
-                              (k_pi * dd));
+        true_kernel.push_back(std::max(0.0, dot(nq, w)) * std::max(0.0, -dot(np, w)) / (k_pi * dd));
         model_cosines.push_back(std::max(0.0, dot(nq, dc)) * std::max(0.0, -dot(np, dc)));
     }
     if (segments.empty())
@@ -573,8 +573,8 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
         const double open = weighed_irradiance(l, b, pair_geometry(l));
         if (open / double(l.rays) <= threshold / k_resample_margin)
             return;
-        const double wanted = std::min(double(k_max_cluster_rays),
-                                       std::ceil(k_resample_margin * open / threshold));
+        const double wanted =
+            std::min(double(k_max_cluster_rays), std::ceil(k_resample_margin * open / threshold));
         const std::uint16_t before = l.rays;
         cast_cluster_rays(l, int(wanted) - int(l.rays));
         changed[k] = l.rays > before; // no end faced the other: nothing to add
@@ -683,15 +683,12 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
     });
     cluster_pairs = {};
     // Drop the new links that carry nothing (the kept ones all carry something).
-    const auto carried =
-        std::remove_if(cluster_links_.begin() + std::ptrdiff_t(kept), cluster_links_.end(),
-                       [](const ClusterLink& l) {
-                           return !l.self && !(l.g > 0) && !l.unresolved();
-                       });
+    const auto carried = std::remove_if(
+        cluster_links_.begin() + std::ptrdiff_t(kept), cluster_links_.end(),
+        [](const ClusterLink& l) { return !l.self && !(l.g > 0) && !l.unresolved(); });
     cluster_links_.resize(std::size_t(carried - cluster_links_.begin()));
     cluster_kept_.assign(cluster_links_.size(), 0);
-    std::fill(cluster_kept_.begin(), cluster_kept_.begin() + std::ptrdiff_t(kept),
-              std::uint8_t(1));
+    std::fill(cluster_kept_.begin(), cluster_kept_.begin() + std::ptrdiff_t(kept), std::uint8_t(1));
     return true;
 }
 

@@ -24,7 +24,9 @@ namespace {
 
 enum Decision : std::uint8_t { keep = 0, split_receiver = 1, split_source = 2 };
 
-OrientedTriangle oriented(const Hierarchy& h, std::uint32_t n) { return {h.triangle[n], h.normal[n]}; }
+OrientedTriangle oriented(const Hierarchy& h, std::uint32_t n) {
+    return {h.triangle[n], h.normal[n]};
+}
 
 bool faces(const Hierarchy& h, std::uint32_t a, std::uint32_t b, double eps) {
     return in_front(oriented(h, a), oriented(h, b), eps) &&
@@ -42,8 +44,8 @@ constexpr int k_twin_child[4] = {0, 2, 1, 3};
 
 LinkSet::LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, const VisibilityQuery& visibility,
                  const std::vector<PointLight>& lights, const Sun* sun, RefineSettings settings)
-    : h_(h), twin_(twin), visibility_(visibility), lights_(lights), sun_(sun),
-      settings_(settings) {}
+    : h_(h), twin_(twin), visibility_(visibility), lights_(lights), sun_(sun), settings_(settings) {
+}
 
 Link LinkSet::make_link(std::uint32_t q, std::uint32_t p) const {
     if (centres_occluded(q, p)) // a plane between them proves them dark
@@ -62,8 +64,8 @@ Link LinkSet::reverse_link(const Link& l) const {
     double spread = 0;
     if (std::max(h_.area[q], h_.area[p]) > settings_.min_area) { // the oracle may split it
         const OrientedTriangle a = oriented(h_, p), b = oriented(h_, q);
-        spread = triangle_form_factor_visible(a, b, quadrature_level_for(a, b, settings_.rows))
-                     .f_spread;
+        spread =
+            triangle_form_factor_visible(a, b, quadrature_level_for(a, b, settings_.rows)).f_spread;
     }
     return {p, q, float(double(l.ff) * h_.area[q] / h_.area[p]), float(spread), l.partial()};
 }
@@ -132,9 +134,10 @@ LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
         return link;
     const ProfileRange profile = profile_range(light, h_.triangle[q]);
     if (profile.hi <= 0)
-        return link; // outside a spot's cut-off
+        return link;                 // outside a spot's cut-off
     double e_min = 1e300, e_max = 0; // cos θ / d² at the corners and the centroid
-    for (const Vec3& x : {h_.triangle[q][0], h_.triangle[q][1], h_.triangle[q][2], h_.centroid(q)}) {
+    for (const Vec3& x :
+         {h_.triangle[q][0], h_.triangle[q][1], h_.triangle[q][2], h_.centroid(q)}) {
         const Vec3 d = pos - x;
         const double e = std::max(0.0, dot(d, h_.normal[q])) / std::pow(dot(d, d), 1.5);
         e_min = std::min(e_min, e);
@@ -142,16 +145,17 @@ LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
     }
     // The spread of I·profile·cos θ / d² takes the profile's exact range over the receiver, so
     // that the oracle refines where a spot's falloff or cone edge crosses it.
-    link.spread = float((profile.hi * e_max - profile.lo * e_min) *
-                        double(light.intensity.max_component()));
+    link.spread =
+        float((profile.hi * e_max - profile.lo * e_min) * double(light.intensity.max_component()));
     const double omega = profile_solid_angle_triangle(light, h_.triangle[q]);
     Pcg32 rng = Pcg32::for_stream(RngPurpose::point_light_visibility, l, q, 1, settings_.rows.seed);
     const int rays = std::max(1, settings_.rows.visibility_rays);
-    const int open = light_rays_open(pos, oriented(h_, q), settings_.offset, rays, visibility_, rng);
+    const int open =
+        light_rays_open(pos, oriented(h_, q), settings_.offset, rays, visibility_, rng);
     const double v = double(open) / double(rays);
     // A hard cone edge (beam = cut-off) across the receiver is a boundary like a shadow's.
-    const bool hard_edge = light.spot && light.spot->beam_deg == light.spot->cutoff_deg &&
-                           profile.varies();
+    const bool hard_edge =
+        light.spot && light.spot->beam_deg == light.spot->cutoff_deg && profile.varies();
     link.partial = (open > 0 && open < rays) || hard_edge;
     link.irradiance = light.intensity * float(omega * v / h_.area[q]);
     return link;
@@ -163,8 +167,7 @@ LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
 // irradiance as a point light's.
 LightLink LinkSet::make_sun_link(std::uint32_t q) const {
     const SunIrradiance s = sun_triangle_irradiance(*sun_, oriented(h_, q), settings_.offset,
-                                                    h_.diagonal, q, 1, visibility_,
-                                                    settings_.rows);
+                                                    h_.diagonal, q, 1, visibility_, settings_.rows);
     return {q, std::uint32_t(lights_.size()), s.irradiance, 0, std::uint8_t(s.partial ? 1 : 0)};
 }
 
@@ -210,7 +213,8 @@ void LinkSet::link_lights() {
     light_links_.clear();
     for (std::uint32_t l = 0; l < lights_.size() + (sun_ ? 1 : 0); ++l) { // the sun last
         std::vector<LightLink> made(r);
-        parallel_for_index(r, 64, [&](std::size_t q) { made[q] = make_light_link(std::uint32_t(q), l); });
+        parallel_for_index(r, 64,
+                           [&](std::size_t q) { made[q] = make_light_link(std::uint32_t(q), l); });
         for (const LightLink& link : made)
             if (!link.irradiance.is_black())
                 light_links_.push_back(link);
@@ -237,7 +241,8 @@ void LinkSet::subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<flo
     if (t >= 0) {
         for (int c = 0; c < 4; ++c) {
             std::uint32_t mine = std::uint32_t(h_.first_child[node] + c);
-            std::uint32_t theirs = std::uint32_t(h_.first_child[std::uint32_t(t)] + k_twin_child[c]);
+            std::uint32_t theirs =
+                std::uint32_t(h_.first_child[std::uint32_t(t)] + k_twin_child[c]);
             twin_[mine] = std::int32_t(theirs);
             twin_[theirs] = std::int32_t(mine);
         }
@@ -320,8 +325,8 @@ bool LinkSet::refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range
         const LightLink& l = light_links_[k];
         const double e = settings_.oracle == Oracle::bf ? double(l.irradiance.max_component())
                                                         : double(l.spread);
-        split[k] = (l.partial || e > settings_.threshold) &&
-                   h_.area[l.receiver] > settings_.min_area;
+        split[k] =
+            (l.partial || e > settings_.threshold) && h_.area[l.receiver] > settings_.min_area;
     });
     if (std::none_of(split.begin(), split.end(), [](std::uint8_t s) { return s != 0; }))
         return false;

@@ -12,10 +12,10 @@
 #include <utility>
 #include <vector>
 
+#include "cluster_tree.h"
 #include "core/rng.h"
 #include "core/scene.h"
 #include "core/visibility.h"
-#include "cluster_tree.h"
 #include "element_rows.h"
 #include "hierarchy.h"
 #include "mapped_array.h"
@@ -118,15 +118,15 @@ struct RefineSettings {
     /// where a small bright source lights a large cluster: ε × the mean irradiance (emitted
     /// power over the total area) rather than ε × the brightest exitance.
     double cluster_threshold = 0;
-    double min_area = 0;        ///< m²
+    double min_area = 0; ///< m²
     RowSettings rows;
     double offset = 0;
 };
 
 /// What refine() reports after each of its passes (a pass refines every link once).
 struct RefinePass {
-    const char* kind = "";  ///< "light", "cluster" or "element" links
-    int pass = 0;           ///< passes of refine() so far, from 1
+    const char* kind = ""; ///< "light", "cluster" or "element" links
+    int pass = 0;          ///< passes of refine() so far, from 1
     std::size_t element_links = 0, cluster_links = 0, light_links = 0, nodes = 0;
 };
 
@@ -313,8 +313,7 @@ private:
     std::size_t draw_root(std::uint32_t c, double u, const std::vector<double>& running) const;
     Vec3 sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec3& normal,
                              const std::vector<double>& running) const;
-    template <typename Fn>
-    void for_each_child(NodeRef n, Fn&& fn) const;
+    template <typename Fn> void for_each_child(NodeRef n, Fn&& fn) const;
     struct Plane {
         Vec3 n;
         double d = 0; ///< n · (a point of the plane)
@@ -346,8 +345,7 @@ private:
     /// Distance between the bounds of two nodes (0 where they overlap).
     double box_gap(NodeRef a, NodeRef b) const;
     /// An element's vertices, or the corners of a cluster's bounds.
-    template <typename Fn>
-    void for_each_corner(NodeRef n, Fn&& fn) const;
+    template <typename Fn> void for_each_corner(NodeRef n, Fn&& fn) const;
     /// The face clusters' boundaries (boundary_) and which are exact sources.
     void build_boundaries();
     /// Appends the boundary \p edges of a face cluster to \p out, collinear edges in a row
@@ -446,7 +444,7 @@ private:
     std::vector<ContourEdge> boundary_;
     std::vector<std::uint32_t> boundary_begin_;
     std::vector<std::uint8_t> exact_source_; ///< per cluster (exact_source)
-    std::vector<Lobes> area_lobes_; ///< per cluster: Σ A max(0, ±n_a)
+    std::vector<Lobes> area_lobes_;          ///< per cluster: Σ A max(0, ±n_a)
     /// The roots in depth-first order of the cluster tree, where every cluster is a range
     /// [root_begin_[c], root_end_[c]), and the running sum of their areas (one longer): a
     /// root is drawn by area with one binary search.

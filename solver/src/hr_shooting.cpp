@@ -58,7 +58,9 @@ private:
     std::vector<std::uint32_t> index_;
 };
 
-double magnitude(const Rgb& c) { return std::abs(c.r) + std::abs(c.g) + std::abs(c.b); }
+double magnitude(const Rgb& c) {
+    return std::abs(c.r) + std::abs(c.g) + std::abs(c.b);
+}
 
 class Shooter {
 public:
@@ -227,7 +229,7 @@ private:
     std::vector<Rgb> pending_even_; ///< irradiance arrived through cluster links
     std::vector<Rgb> shot_;         ///< radiosity shot since the last cluster round (area means)
     bool any_shot_ = false;
-    std::vector<double> power_;     ///< per root: Σ A |unshot| (pending counted as ρ ΔH)
+    std::vector<double> power_; ///< per root: Σ A |unshot| (pending counted as ρ ΔH)
     double total_ = 0;
     MaxTree top_;
 };
@@ -245,9 +247,8 @@ Solved shoot_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clus
     shooter.cluster_round();
     // Unshot power is summed over the three channels, as the sweeps' change is.
     const double target = settings.residual * std::max(emitted * 3.0, 1e-300);
-    const std::int64_t max_shots = settings.max_shots > 0
-                                       ? settings.max_shots
-                                       : 10000 * std::int64_t(h.root_count) + 100;
+    const std::int64_t max_shots =
+        settings.max_shots > 0 ? settings.max_shots : 10000 * std::int64_t(h.root_count) + 100;
     const std::int64_t round = std::max<std::int64_t>(64, std::int64_t(h.root_count) / 4);
     const std::int64_t history_every = std::max<std::int64_t>(1, std::int64_t(h.root_count));
     Solved s;

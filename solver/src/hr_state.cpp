@@ -26,18 +26,15 @@ constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '8'};
 class Writer {
 public:
     explicit Writer(std::ostream& out) : out_(out) {}
-    template <typename T>
-    void pod(const T& value) {
+    template <typename T> void pod(const T& value) {
         out_.write(reinterpret_cast<const char*>(&value), sizeof(T));
     }
-    template <typename T>
-    void vec(std::span<const T> values) {
+    template <typename T> void vec(std::span<const T> values) {
         pod(std::uint64_t(values.size()));
         out_.write(reinterpret_cast<const char*>(values.data()),
                    std::streamsize(values.size() * sizeof(T)));
     }
-    template <typename T>
-    void vec(const std::vector<T>& values) {
+    template <typename T> void vec(const std::vector<T>& values) {
         vec(std::span<const T>(values));
     }
 
@@ -47,21 +44,19 @@ private:
 
 class Reader {
 public:
-    Reader(std::string bytes, std::string path) : bytes_(std::move(bytes)), path_(std::move(path)) {}
-    template <typename T>
-    T pod() {
+    Reader(std::string bytes, std::string path)
+        : bytes_(std::move(bytes)), path_(std::move(path)) {}
+    template <typename T> T pod() {
         T value;
         take(&value, sizeof(T));
         return value;
     }
-    template <typename T>
-    std::vector<T> vec() {
+    template <typename T> std::vector<T> vec() {
         std::vector<T> values(count<T>());
         take(values.data(), values.size() * sizeof(T));
         return values;
     }
-    template <typename T>
-    void vec(MappedArray<T>& values) {
+    template <typename T> void vec(MappedArray<T>& values) {
         values.resize(count<T>());
         take(values.data(), values.size() * sizeof(T));
     }
@@ -73,16 +68,16 @@ public:
     }
     bool done() const { return at_ == bytes_.size(); }
     /// The element count of the array that follows, checked against what is left.
-    template <typename T>
-    std::size_t count() {
+    template <typename T> std::size_t count() {
         const auto n = pod<std::uint64_t>();
         if (n > (bytes_.size() - at_) / sizeof(T))
             fail("truncated or corrupt");
         return std::size_t(n);
     }
     [[noreturn]] void fail(const std::string& what) const {
-        throw InputError(path_, "", "not a Penumbra solver state (" + what +
-                                        "): bake again with the hierarchical method");
+        throw InputError(path_, "",
+                         "not a Penumbra solver state (" + what +
+                             "): bake again with the hierarchical method");
     }
 
 private:
@@ -144,8 +139,9 @@ void write_hierarchical_state(const HierarchicalState& s, const std::string& pat
 std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in)
-        throw InputError(path, "", "cannot open the solver state (bake with the hierarchical "
-                                   "method first; it writes solver_state.bin)");
+        throw InputError(path, "",
+                         "cannot open the solver state (bake with the hierarchical "
+                         "method first; it writes solver_state.bin)");
     std::ostringstream buffer;
     buffer << in.rdbuf();
     Reader r(buffer.str(), path);
@@ -195,11 +191,10 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
                               return false;
                       return true;
                   }();
-    const bool consistent = h.normal.size() == n && h.area.size() == n && h.patch.size() == n &&
-                            h.parent.size() == n && h.first_child.size() == n &&
-                            h.level.size() == n && s->twin.size() == n &&
-                            s->radiosity.size() == n && h.root_count <= n &&
-                            weights_consistent && r.done();
+    const bool consistent =
+        h.normal.size() == n && h.area.size() == n && h.patch.size() == n && h.parent.size() == n &&
+        h.first_child.size() == n && h.level.size() == n && s->twin.size() == n &&
+        s->radiosity.size() == n && h.root_count <= n && weights_consistent && r.done();
     if (!consistent)
         r.fail("inconsistent sizes");
     const auto in_range = [n](std::uint32_t node) { return node < n; };

@@ -118,8 +118,7 @@ Rgb push_pull(const Hierarchy& h, NodeValues& v, std::uint32_t node, const Rgb& 
     return b;
 }
 
-double push_pull_root(const Hierarchy& h, NodeValues& v, const Clusters& clusters,
-                      std::size_t r) {
+double push_pull_root(const Hierarchy& h, NodeValues& v, const Clusters& clusters, std::size_t r) {
     double change = 0;
     const bool c = clusters.enabled;
     push_pull(h, v, std::uint32_t(r), c ? clusters.values.root_direct[r] : Rgb{},
@@ -266,8 +265,9 @@ double sweep_jacobi(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clu
     size_values(h, v);
     gather_extra(h, links, v, clusters);
     const std::vector<Rgb>& b_source = sent_radiosity(h, v);
-    parallel_for_index(h.size(), 256,
-                       [&](std::size_t q) { gather_node(h, links, v, b_source, std::uint32_t(q)); });
+    parallel_for_index(h.size(), 256, [&](std::size_t q) {
+        gather_node(h, links, v, b_source, std::uint32_t(q));
+    });
     std::vector<double> change(h.root_count, 0.0);
     parallel_for_index(h.root_count, 16,
                        [&](std::size_t r) { change[r] = push_pull_root(h, v, clusters, r); });
@@ -291,8 +291,7 @@ Solved solve_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clus
                    SweepLog& log) {
     if (iteration == Iteration::shooting)
         return shoot_links(h, links, v, clusters, settings, emitted, log);
-    const TreeNodes trees =
-        iteration == Iteration::gauss_seidel ? tree_nodes(h) : TreeNodes{};
+    const TreeNodes trees = iteration == Iteration::gauss_seidel ? tree_nodes(h) : TreeNodes{};
     Solved s;
     while (s.sweeps < settings.max_sweeps && s.relative > settings.residual) {
         s.relative = iteration == Iteration::gauss_seidel

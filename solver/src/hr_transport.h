@@ -61,9 +61,9 @@ struct SweepLog {
 };
 
 struct Solved {
-    int sweeps = 0;          ///< sweeps (shooting: shots)
-    double relative = 1;     ///< last change (shooting: unshot power) over the emitted power
-    bool limit_hit = false;  ///< stopped by solver.max_sweeps or max_shots, not the residual
+    int sweeps = 0;         ///< sweeps (shooting: shots)
+    double relative = 1;    ///< last change (shooting: unshot power) over the emitted power
+    bool limit_hit = false; ///< stopped by solver.max_sweeps or max_shots, not the residual
 };
 
 /// NodeValues::b_emit afresh from the leaves' radiosities, once the weights have changed.

@@ -14,7 +14,9 @@ constexpr std::uint32_t k_max_cells_per_axis = 4096;
 
 using Key = std::array<std::int64_t, 4>;
 
-std::int64_t quantize(double x, double unit) { return std::int64_t(std::llround(x / unit)); }
+std::int64_t quantize(double x, double unit) {
+    return std::int64_t(std::llround(x / unit));
+}
 
 /// The plane of root \p r with the normal's largest component positive, so both sides of a
 /// surface (and coplanar surfaces facing either way) share it.
@@ -29,8 +31,12 @@ std::pair<Vec3, double> canonical_plane(const Hierarchy& h, std::uint32_t r) {
     return {n, dot(n, h.triangle[r][0])};
 }
 
-double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
-double length2(double x, double y) { return std::sqrt(x * x + y * y); }
+double cross2(double ax, double ay, double bx, double by) {
+    return ax * by - ay * bx;
+}
+double length2(double x, double y) {
+    return std::sqrt(x * x + y * y);
+}
 
 /// The grid coordinate of \p x along an axis of \p n cells of size \p cell from \p origin.
 std::uint32_t grid_coordinate(double x, double origin, double cell, std::uint32_t n) {
@@ -139,10 +145,10 @@ void OccluderPlanes::add_plane(Plane& plane, const Hierarchy& h,
     fill_cells(plane, cell_triangles_begin_, cell_triangles_, first_triangle, triangles_.size(),
                [&](std::size_t i) {
                    const auto& t = triangles_[i];
-                   return cells_of(plane, {std::min({t[0].x, t[1].x, t[2].x}),
-                                           std::min({t[0].y, t[1].y, t[2].y})},
-                                   {std::max({t[0].x, t[1].x, t[2].x}),
-                                    std::max({t[0].y, t[1].y, t[2].y})});
+                   return cells_of(
+                       plane,
+                       {std::min({t[0].x, t[1].x, t[2].x}), std::min({t[0].y, t[1].y, t[2].y})},
+                       {std::max({t[0].x, t[1].x, t[2].x}), std::max({t[0].y, t[1].y, t[2].y})});
                });
 
     // The union's boundary. The triangles' edges cancel where two triangles meet, also where
@@ -172,8 +178,8 @@ void OccluderPlanes::add_plane(Plane& plane, const Hierarchy& h,
             }
             const double c = cross2(d.x, d.y, p0.x, p0.y);
             const double s0 = d.x * p0.x + d.y * p0.y, s1 = d.x * p1.x + d.y * p1.y;
-            lines.push_back({Key{quantize(d.x, 1e-6), quantize(d.y, 1e-6), quantize(c, unit), 0},
-                             d, c, std::min(s0, s1), std::max(s0, s1), sign});
+            lines.push_back({Key{quantize(d.x, 1e-6), quantize(d.y, 1e-6), quantize(c, unit), 0}, d,
+                             c, std::min(s0, s1), std::max(s0, s1), sign});
         }
     std::sort(lines.begin(), lines.end(), [](const LinePiece& x, const LinePiece& y) {
         return x.key != y.key ? x.key < y.key : x.s0 < y.s0;
@@ -263,8 +269,8 @@ void OccluderPlanes::add_uncovered(const Plane& plane, Point2 a, Point2 b, Point
                 // Inside a counter-clockwise triangle: left of every edge.
                 const Point2 p = t[k], q = t[(k + 1) % 3];
                 if (!clip_to_half_plane(cross2(q.x - p.x, q.y - p.y, qa.x - p.x, qa.y - p.y),
-                                        cross2(q.x - p.x, q.y - p.y, qb.x - qa.x, qb.y - qa.y),
-                                        t0, t1))
+                                        cross2(q.x - p.x, q.y - p.y, qb.x - qa.x, qb.y - qa.y), t0,
+                                        t1))
                     t1 = -1;
             }
             if (t0 < t1)
@@ -383,8 +389,8 @@ bool OccluderPlanes::blocks(std::uint32_t pi, std::span<const Vec3> a,
         double t0 = 0, t1 = 1;
         for (const Side& side : sides)
             if (!clip_to_half_plane(side.nx * s[0].x + side.ny * s[0].y - side.offset,
-                                    side.nx * (s[1].x - s[0].x) + side.ny * (s[1].y - s[0].y),
-                                    t0, t1) ||
+                                    side.nx * (s[1].x - s[0].x) + side.ny * (s[1].y - s[0].y), t0,
+                                    t1) ||
                 t0 > t1)
                 return false;
         return true;
@@ -398,8 +404,8 @@ bool OccluderPlanes::blocks(std::uint32_t pi, std::span<const Vec3> a,
     }
     auto cell_x = [&](double v) { return grid_coordinate(v, plane.lo.x, plane.cell, plane.nx); };
     auto cell_y = [&](double v) { return grid_coordinate(v, plane.lo.y, plane.cell, plane.ny); };
-    const bool entered =
-        any_cell({cell_x(x0), cell_y(y0), cell_x(x1), cell_y(y1)}, plane.nx, [&](std::size_t local) {
+    const bool entered = any_cell(
+        {cell_x(x0), cell_y(y0), cell_x(x1), cell_y(y1)}, plane.nx, [&](std::size_t local) {
             const std::size_t c = plane.cell_begin + local;
             for (std::uint32_t i = cell_segments_begin_[c]; i < cell_segments_begin_[c + 1]; ++i)
                 if (enters(segments_[cell_segments_[i]]))

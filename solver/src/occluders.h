@@ -47,9 +47,9 @@ private:
         double x = 0, y = 0;
     };
     struct Plane {
-        Vec3 n, u, v;   ///< unit normal and an orthonormal frame of the plane
-        double d = 0;   ///< n · (a point of the plane)
-        Point2 lo, hi;  ///< the triangles' bounds in the frame (lo: the grid's origin)
+        Vec3 n, u, v;    ///< unit normal and an orthonormal frame of the plane
+        double d = 0;    ///< n · (a point of the plane)
+        Point2 lo, hi;   ///< the triangles' bounds in the frame (lo: the grid's origin)
         double cell = 1; ///< grid cell size
         std::uint32_t nx = 1, ny = 1;
         std::uint32_t cell_begin = 0; ///< first cell in cell_*_begin_ (nx · ny cells)
@@ -72,8 +72,8 @@ private:
     /// [first, last), item i in the cells box_of(i) returns.
     template <typename BoxOf>
     static void fill_cells(const Plane& plane, std::vector<std::uint32_t>& begin,
-                           std::vector<std::uint32_t>& items, std::size_t first,
-                           std::size_t last, BoxOf&& box_of);
+                           std::vector<std::uint32_t>& items, std::size_t first, std::size_t last,
+                           BoxOf&& box_of);
 
     std::vector<Plane> planes_;
     std::vector<std::uint32_t> root_plane_;

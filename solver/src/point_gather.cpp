@@ -142,9 +142,9 @@ Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
         if (cos_theta > 0) {
             Pcg32 sun_rng = Pcg32::for_stream(RngPurpose::sun_visibility, p.id, 2,
                                               std::uint64_t(p.purpose), seed);
-            const double v = sun_point_visibility(sun, p.position + p.normal * geo.offset,
-                                                  geo.diagonal, rays_per_source, visibility,
-                                                  sun_rng);
+            const double v =
+                sun_point_visibility(sun, p.position + p.normal * geo.offset, geo.diagonal,
+                                     rays_per_source, visibility, sun_rng);
             sum += RgbD(sun.irradiance) * (cos_theta * v);
         }
     }

@@ -25,7 +25,7 @@ struct GatherSources {
 struct GatherPoint {
     Vec3 position;
     Vec3 normal;
-    std::uint64_t id = 0;   ///< names the random stream together with the purpose
+    std::uint64_t id = 0; ///< names the random stream together with the purpose
     RngPurpose purpose = RngPurpose::vertex_visibility;
 };
 

@@ -73,8 +73,8 @@ Vec3 sample_cap(const Vec3& axis, double cos_max, double u1, double u2) {
 double visible_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
                         const Vec3& light, std::size_t light_id, std::uint32_t j,
                         const RowSettings& settings) {
-    Pcg32 rng = Pcg32::for_stream(RngPurpose::point_light_visibility, light_id, j, 0,
-                                  settings.seed);
+    Pcg32 rng =
+        Pcg32::for_stream(RngPurpose::point_light_visibility, light_id, j, 0, settings.seed);
     const int rays = std::max(1, settings.visibility_rays);
     return double(light_rays_open(light, geo.oriented(j), geo.offset, rays, visibility, rng)) /
            double(rays);
@@ -125,10 +125,9 @@ double profile_solid_angle_triangle(const PointLight& light, const std::array<Ve
             continue;
         }
         const Vec3 ab = (a + b) * 0.5, bc = (b + c) * 0.5, ca = (c + a) * 0.5;
-        for (const std::array<Vec3, 3>& child : {std::array<Vec3, 3>{a, ab, ca},
-                                                 std::array<Vec3, 3>{ab, b, bc},
-                                                 std::array<Vec3, 3>{ca, bc, c},
-                                                 std::array<Vec3, 3>{ab, bc, ca}})
+        for (const std::array<Vec3, 3>& child :
+             {std::array<Vec3, 3>{a, ab, ca}, std::array<Vec3, 3>{ab, b, bc},
+              std::array<Vec3, 3>{ca, bc, c}, std::array<Vec3, 3>{ab, bc, ca}})
             stack.push_back({child, part.depth + 1});
     }
     return sum;
@@ -138,8 +137,8 @@ int light_rays_open(const Vec3& light, const OrientedTriangle& target, double of
                     const VisibilityQuery& visibility, Pcg32& rng) {
     std::vector<Segment> segments(std::size_t(std::max(1, rays)));
     for (Segment& seg : segments) {
-        Vec3 to = sample_triangle(target.v, rng.next_double(), rng.next_double()) +
-                  target.n * offset;
+        Vec3 to =
+            sample_triangle(target.v, rng.next_double(), rng.next_double()) + target.n * offset;
         seg = {Vec3f(light), Vec3f(to - light), 0.0f, 1.0f};
     }
     std::vector<std::uint8_t> blocked(segments.size());

@@ -12,8 +12,7 @@ namespace penumbra::solver {
 
 std::vector<SensorReading> evaluate_sensors(const Scene& scene, const RadiosityMesh& mesh,
                                             const Solution& solution,
-                                            const VisibilityQuery& visibility,
-                                            const Context& ctx) {
+                                            const VisibilityQuery& visibility, const Context& ctx) {
     std::vector<SensorReading> readings(scene.sensors.size());
     if (readings.empty())
         return readings;
@@ -32,8 +31,8 @@ std::vector<SensorReading> evaluate_sensors(const Scene& scene, const RadiosityM
             GatherPoint p{sensor.position, sensor.normal, s, RngPurpose::sensor_visibility};
             SensorReading& r = readings[s];
             r.irradiance_direct = gather_direct(geo, sources, visibility, p, rays, ctx.seed);
-            r.irradiance_total =
-                r.irradiance_direct + gather_elements(geo, reflected, visibility, p, rays, ctx.seed);
+            r.irradiance_total = r.irradiance_direct +
+                                 gather_elements(geo, reflected, visibility, p, rays, ctx.seed);
             r.illuminance_direct_lx = to_photometric(r.irradiance_direct);
             r.illuminance_total_lx = to_photometric(r.irradiance_total);
         });

@@ -139,8 +139,7 @@ LoopResult shooting_loop(ShootingState& s, const RadiosityMesh& mesh, const Elem
         if (observer && observer->on_pass && observer->every_shots > 0 &&
             result.shots % observer->every_shots == 0)
             observer->on_pass(snapshot_solution(mesh, {s.radiosity, s.h_direct, s.h_indirect}),
-                              result.shots,
-                              unshot / std::max(emitted, 1e-300), false);
+                              result.shots, unshot / std::max(emitted, 1e-300), false);
         progress.update(std::log(start / std::max(unshot, 1e-300)) /
                         std::log(start / std::max(target, 1e-300)));
     }
@@ -182,8 +181,8 @@ PowerBalance balance_of(const ShootingState& s, const ElementGeometry& geo) {
     for (std::size_t e = 0; e < geo.size(); ++e) {
         RgbD absorbed_frac = RgbD(1.0, 1.0, 1.0) - RgbD(s.reflectance[e]);
         RgbD h = RgbD(s.h_direct[e]) + RgbD(s.h_indirect[e]);
-        pb.absorbed += RgbD(h.r * absorbed_frac.r, h.g * absorbed_frac.g, h.b * absorbed_frac.b) *
-                       geo.area[e];
+        pb.absorbed +=
+            RgbD(h.r * absorbed_frac.r, h.g * absorbed_frac.g, h.b * absorbed_frac.b) * geo.area[e];
         pb.residual += (RgbD(s.unshot_emitted[e]) + RgbD(s.unshot_reflected[e])) * geo.area[e];
     }
     return pb;
@@ -199,8 +198,8 @@ double PowerBalance::relative_imbalance() const {
 }
 
 Solution solve_shooting(const Scene& scene, const RadiosityMesh& mesh,
-                        const VisibilityQuery& visibility, const Context& ctx,
-                        SolveStats* stats, const SolveObserver* observer) {
+                        const VisibilityQuery& visibility, const Context& ctx, SolveStats* stats,
+                        const SolveObserver* observer) {
     using clock = std::chrono::steady_clock;
     const auto t0 = clock::now();
     const std::uint64_t rays0 = visibility.rays_traced();
@@ -213,8 +212,8 @@ Solution solve_shooting(const Scene& scene, const RadiosityMesh& mesh,
         shoot_point_lights(state, geo, scene.point_lights, visibility, row_settings, ctx);
         if (scene.sun)
             shoot_sun(state, geo, *scene.sun, visibility, row_settings, ctx);
-        LoopResult loop = shooting_loop(state, mesh, geo, visibility, scene.solver, row_settings,
-                                        observer, ctx);
+        LoopResult loop =
+            shooting_loop(state, mesh, geo, visibility, scene.solver, row_settings, observer, ctx);
         PowerBalance balance = balance_of(state, geo);
         if (scene.solver.ambient)
             add_ambient(state, geo);

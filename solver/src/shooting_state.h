@@ -9,11 +9,11 @@
 namespace penumbra::solver {
 
 struct ShootingState {
-    std::vector<Rgb> emission;      ///< E = πL, W/m²
-    std::vector<Rgb> reflectance;   ///< ρ
-    std::vector<Rgb> radiosity;     ///< B
-    std::vector<Rgb> h_direct;      ///< irradiance from sources
-    std::vector<Rgb> h_indirect;    ///< irradiance from reflected light
+    std::vector<Rgb> emission;         ///< E = πL, W/m²
+    std::vector<Rgb> reflectance;      ///< ρ
+    std::vector<Rgb> radiosity;        ///< B
+    std::vector<Rgb> h_direct;         ///< irradiance from sources
+    std::vector<Rgb> h_indirect;       ///< irradiance from reflected light
     std::vector<Rgb> unshot_emitted;   ///< emitted radiosity not yet shot
     std::vector<Rgb> unshot_reflected; ///< reflected radiosity not yet shot
     RgbD escaped;                      ///< W that left the scene

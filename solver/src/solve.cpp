@@ -24,10 +24,9 @@ SolveResult solve_fixed(const Scene& scene, const RadiosityMesh& mesh,
         rows.visibility_rays = scene.solver.visibility_rays;
         rows.seed = ctx.seed;
         FixedSystem system = build_fixed_system(scene, mesh, geo, visibility, rows, ctx);
-        ElementResult er = method == "matrix"
-                               ? solve_matrix(system, geo, ctx, stats)
-                               : solve_gathering(system, geo, scene.solver,
-                                                 method != "jacobi", ctx, stats);
+        ElementResult er = method == "matrix" ? solve_matrix(system, geo, ctx, stats)
+                                              : solve_gathering(system, geo, scene.solver,
+                                                                method != "jacobi", ctx, stats);
         SolveResult result;
         result.solution = make_solution(scene, mesh, geo, std::move(er), visibility, rows, ctx);
         if (observer && observer->on_pass)
@@ -74,9 +73,9 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
     return pb;
 }
 
-SolveResult solve(const Scene& scene, const RadiosityMesh& mesh,
-                  const VisibilityQuery& visibility, const Context& ctx, SolveStats* stats,
-                  const SolveObserver* observer, const HierarchicalState* reuse) {
+SolveResult solve(const Scene& scene, const RadiosityMesh& mesh, const VisibilityQuery& visibility,
+                  const Context& ctx, SolveStats* stats, const SolveObserver* observer,
+                  const HierarchicalState* reuse) {
     const std::string& method = scene.solver.method;
     if (method == "hierarchical")
         return run_in_arena(ctx, [&] {

@@ -107,8 +107,8 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
                                   ctx.seed, &near) +
                     vertex_far[v];
             } else {
-                sol.vertex_irradiance_direct[v] = gather_direct(
-                    source_geo, sources, visibility, p, settings.visibility_rays, ctx.seed);
+                sol.vertex_irradiance_direct[v] = gather_direct(source_geo, sources, visibility, p,
+                                                                settings.visibility_rays, ctx.seed);
             }
             Rgb h = sol.vertex_irradiance_direct[v] + sol.vertex_irradiance_indirect[v];
             sol.vertex_radiosity[v] = patch.emission + patch.reflectance * h;

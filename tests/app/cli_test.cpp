@@ -18,8 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using test::RunResult;
 using test::run_cli;
+using test::RunResult;
 
 void write(const fs::path& path, const std::string& text) {
     std::ofstream(path) << text;
@@ -40,7 +40,8 @@ std::string good_scene(const std::string& extra = "") {
     {"name": "lamp", "material": "lamp", "vertices": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]]},
     {"name": "floor", "material": "floor", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}
   ],
-  "mesher": {"max_edge_length": 0.5})" + extra + "\n}\n";
+  "mesher": {"max_edge_length": 0.5})" +
+           extra + "\n}\n";
 }
 
 class CliBadInput : public ::testing::Test {
@@ -110,8 +111,8 @@ TEST_F(CliBadInput, BadSpot) {
          "cutoff_deg"},
         {R"({"direction": [0, 0, -1], "beam_deg": 10, "cutoff_deg": 200})", "spot.cutoff_deg",
          "180"},
-        {R"({"direction": [0, 0, -1], "beam_deg": 10, "cutoff_deg": 20, "angle": 5})",
-         "spot.angle", "unknown key"},
+        {R"({"direction": [0, 0, -1], "beam_deg": 10, "cutoff_deg": 20, "angle": 5})", "spot.angle",
+         "unknown key"},
     };
     int i = 0;
     for (const Case& c : cases) {
@@ -125,7 +126,7 @@ TEST_F(CliBadInput, BadSpot) {
         EXPECT_EQ(count_lines(r.err), 1) << r.err;
         EXPECT_EQ(r.err.rfind("penumbra: error: ", 0), 0u) << r.err;
         for (const std::string& m : {scene.filename().string(),
-                                    std::string("point_lights[0].") + c.key, std::string(c.what)})
+                                     std::string("point_lights[0].") + c.key, std::string(c.what)})
             EXPECT_NE(r.err.find(m), std::string::npos) << "missing '" << m << "' in: " << r.err;
         EXPECT_FALSE(fs::exists(out)) << "output left behind";
     }
@@ -186,8 +187,7 @@ TEST_F(CliBadInput, BadFlag) {
 // Solver choices: an unknown value of a scene key names the key and the known values; an
 // unknown flag value names the flag.
 TEST_F(CliBadInput, UnknownSolverChoice) {
-    write(dir_ / "iteration.json",
-          good_scene(R"(, "solver": {"iteration": "southwell"})"));
+    write(dir_ / "iteration.json", good_scene(R"(, "solver": {"iteration": "southwell"})"));
     expect_error((dir_ / "iteration.json").string(),
                  {"iteration.json", "solver.iteration", "southwell", "gauss_seidel"});
     write(dir_ / "ok.json", good_scene());

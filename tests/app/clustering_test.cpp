@@ -9,6 +9,8 @@
 
 #include "app/pipeline.h"
 #include "cluster_tree.h"
+#include "common/bake_util.h"
+#include "common/test_util.h"
 #include "hierarchy.h"
 #include "hr_links.h"
 #include "mesher/mesher.h"
@@ -16,8 +18,6 @@
 #include "point_gather.h"
 #include "raytrace/raytrace.h"
 #include "vertex_values.h"
-#include "common/bake_util.h"
-#include "common/test_util.h"
 
 namespace penumbra {
 namespace {
@@ -49,12 +49,16 @@ Scene lamp_room(const std::string& clustering, double eps) {
     scene.solver.residual = 1e-5;
     add_lamp_room(scene, {0, 0, 0});
     scene.mesher.max_edge_length = 0.4;
-    scene.sensors = {{"floor", {1, 1, 0}, {0, 0, 1}}, {"wall", {0, 1.5, 1.2}, {1, 0, 0}},
-                     {"ceiling", {3, 2, 2.5}, {0, 0, -1}}, {"behind_box", {3.5, 0.9, 0}, {0, 0, 1}}};
+    scene.sensors = {{"floor", {1, 1, 0}, {0, 0, 1}},
+                     {"wall", {0, 1.5, 1.2}, {1, 0, 0}},
+                     {"ceiling", {3, 2, 2.5}, {0, 0, -1}},
+                     {"behind_box", {3.5, 0.9, 0}, {0, 0, 1}}};
     return scene;
 }
 
-double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
+double relative(double a, double b) {
+    return std::abs(a - b) / std::abs(b);
+}
 
 // Clustered links carry the same light as links between all pairs of elements: nothing
 // escapes the closed room, so the absorbed power is the emitted power (a conservation law the
@@ -82,8 +86,7 @@ TEST(Clustering, ErrorFallsWithEpsilon) {
         const app::BakeResult r = bake(lamp_room("on", eps));
         const auto& pb = r.stats.power;
         const double error = relative(pb.absorbed.g + pb.escaped.g, pb.emitted.g);
-        std::printf("lamp room, eps %g: %zu links, power error %.3g\n", eps, r.stats.links,
-                    error);
+        std::printf("lamp room, eps %g: %zu links, power error %.3g\n", eps, r.stats.links, error);
         EXPECT_LT(error, previous) << "eps " << eps;
         previous = error;
     }
@@ -224,9 +227,9 @@ TEST(Clustering, SealedNeighbourAddsAboutItsOwnLinks) {
                 two.stats.links);
     EXPECT_LT(double(two.stats.links), 2.08 * double(one.stats.links));
     for (std::size_t s = 0; s < n; ++s)
-        EXPECT_LT(relative(two.sensors[s + n].irradiance_total.g,
-                           two.sensors[s].irradiance_total.g),
-                  0.02)
+        EXPECT_LT(
+            relative(two.sensors[s + n].irradiance_total.g, two.sensors[s].irradiance_total.g),
+            0.02)
             << "sensor " << s;
 }
 
@@ -262,8 +265,8 @@ Scene panel_hall() {
     test::add_room(scene, {0, 0, 0}, {16, 8, 3}, wall);
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 2; ++j)
-            test::add_rect(scene, "panel", panel, {2.0 + 4.0 * i, 2.0 + 4.0 * j, 2.99},
-                           {0, 0.6, 0}, {0.6, 0, 0});
+            test::add_rect(scene, "panel", panel, {2.0 + 4.0 * i, 2.0 + 4.0 * j, 2.99}, {0, 0.6, 0},
+                           {0.6, 0, 0});
     for (int i = 0; i < 3; ++i) {
         const Vec3 lo(3.5 + 4.0 * i, 3.5, 0), hi(4.5 + 4.0 * i, 4.5, 1.2);
         test::add_rect(scene, "box_top", wall, {lo.x, lo.y, hi.z}, {1, 0, 0}, {0, 1, 0});

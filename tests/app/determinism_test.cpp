@@ -12,8 +12,7 @@
 namespace penumbra {
 namespace {
 
-template <typename T>
-bool bitwise_equal(const std::vector<T>& a, const std::vector<T>& b) {
+template <typename T> bool bitwise_equal(const std::vector<T>& a, const std::vector<T>& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
 
@@ -39,7 +38,8 @@ TEST(Determinism, CornellBoxIdenticalFor1And2And4Threads) {
         const app::BakeResult& r = results[i];
         EXPECT_TRUE(bitwise_equal(r.solution.radiosity, ref.solution.radiosity));
         EXPECT_TRUE(bitwise_equal(r.solution.irradiance_direct, ref.solution.irradiance_direct));
-        EXPECT_TRUE(bitwise_equal(r.solution.irradiance_indirect, ref.solution.irradiance_indirect));
+        EXPECT_TRUE(
+            bitwise_equal(r.solution.irradiance_indirect, ref.solution.irradiance_indirect));
         EXPECT_TRUE(bitwise_equal(r.solution.vertex_radiosity, ref.solution.vertex_radiosity));
         EXPECT_TRUE(bitwise_equal(r.render->pixels, ref.render->pixels));
         ASSERT_EQ(r.sensors.size(), ref.sensors.size());

@@ -20,7 +20,9 @@ using test::add_material;
 using test::bake;
 using test::relative_l1;
 
-Scene cornell(double max_edge) { return test::cornell_box(max_edge); }
+Scene cornell(double max_edge) {
+    return test::cornell_box(max_edge);
+}
 
 // Σ A |B − B_ref| / Σ A B_ref over elements and channels (the same mesh).
 double relative_l1(const app::BakeResult& r, const app::BakeResult& ref) {
@@ -60,8 +62,8 @@ double hierarchical_error(const app::BakeResult& hr, const app::BakeResult& ref)
             if (w1 < -1e-9 || w2 < -1e-9 || w1 + w2 > 1 + 1e-9)
                 continue;
             const double area = ref.mesh.element_area[e];
-            diff += area * std::abs(double((hr.solution.radiosity[k] -
-                                            ref.solution.radiosity[e]).sum()));
+            diff += area *
+                    std::abs(double((hr.solution.radiosity[k] - ref.solution.radiosity[e]).sum()));
             norm += area * double(ref.solution.radiosity[e].sum());
             break;
         }
@@ -116,8 +118,7 @@ TEST_P(HierarchicalFurnace, UniformEmissionAndReflectance) {
             worst_e = e;
         }
     }
-    EXPECT_LT(worst, 0.005) << "element " << worst_e << " level "
-                            << r.mesh.element_level[worst_e];
+    EXPECT_LT(worst, 0.005) << "element " << worst_e << " level " << r.mesh.element_level[worst_e];
 }
 
 // ε = 1 never refines: links between the roots, gathering, push-pull and the leaf mesh. With
@@ -186,9 +187,9 @@ TEST(Hierarchical, ReportsProgressWithinRefinementAndHonoursCancel) {
     ASSERT_NE(stage, progress->stages.end());
     const auto index = std::size_t(stage - progress->stages.begin());
     // The update number of the hierarchical stage's first, and that stage's fractions.
-    const auto first = std::size_t(
-        std::find(progress->stage_of.begin(), progress->stage_of.end(), index) -
-        progress->stage_of.begin());
+    const auto first =
+        std::size_t(std::find(progress->stage_of.begin(), progress->stage_of.end(), index) -
+                    progress->stage_of.begin());
     std::vector<double> f;
     for (std::size_t k = first; k < progress->fractions.size(); ++k)
         if (progress->stage_of[k] == index)

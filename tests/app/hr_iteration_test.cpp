@@ -31,7 +31,9 @@ app::BakeResult bake(Scene scene, const char* iteration, int threads = 0) {
     return test::bake(scene, threads);
 }
 
-Scene cornell(double max_edge) { return test::cornell_box(max_edge); }
+Scene cornell(double max_edge) {
+    return test::cornell_box(max_edge);
+}
 
 // The Cornell box of 0.15 m elements whose links stay between the roots (ε = 1, no clusters),
 // solved to \p residual.
@@ -54,8 +56,8 @@ TEST(HierarchicalIterations, AgreeOnTheSameLinks) {
         const app::BakeResult r = bake(scene, iteration);
         ASSERT_EQ(r.mesh.element_count(), jacobi.mesh.element_count()) << iteration;
         EXPECT_EQ(r.stats.links, jacobi.stats.links) << iteration;
-        const double e = relative_l1(r.solution.radiosity, jacobi.solution.radiosity,
-                                     jacobi.mesh.element_area);
+        const double e =
+            relative_l1(r.solution.radiosity, jacobi.solution.radiosity, jacobi.mesh.element_area);
         EXPECT_LT(e, 1e-5) << iteration;
         const double d = relative_l1(r.solution.irradiance_direct,
                                      jacobi.solution.irradiance_direct, jacobi.mesh.element_area);

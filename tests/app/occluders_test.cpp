@@ -14,13 +14,13 @@
 
 #include <gtest/gtest.h>
 
+#include "common/test_util.h"
 #include "core/visibility.h"
 #include "hierarchy.h"
 #include "mesher/mesher.h"
 #include "occluders.h"
 #include "office_scene.h"
 #include "raytrace/raytrace.h"
-#include "common/test_util.h"
 
 namespace penumbra {
 namespace {

@@ -29,7 +29,9 @@ Scene cornell(double max_edge = 0.1, double epsilon = 3e-3) {
 }
 
 // A coarse solve for the tests of the state itself.
-Scene coarse_cornell() { return cornell(0.2, 3e-2); }
+Scene coarse_cornell() {
+    return cornell(0.2, 3e-2);
+}
 
 // Area-weighted mean radiosity (sum of channels) of each patch: two solves on different leaf
 // meshes compare patch by patch.

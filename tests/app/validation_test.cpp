@@ -68,17 +68,39 @@ TEST_P(FormFactorPipeline, WithinHalfPercent) {
     EXPECT_NEAR(f, c.expected, 0.005 * c.expected) << c.name;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Howell, FormFactorPipeline,
-    ::testing::Values(
-        FormFactorCase{"parallel squares 1 apart", {0, 0, 0}, {1, 0, 0}, {0, 1, 0},
-                       {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, 0.199825},
-        FormFactorCase{"parallel squares 0.5 apart", {0, 0, 0}, {1, 0, 0}, {0, 1, 0},
-                       {0, 0, 0.5}, {0, 1, 0}, {1, 0, 0}, 0.415253},
-        FormFactorCase{"parallel 2x1 rectangles 1 apart", {0, 0, 0}, {2, 0, 0}, {0, 1, 0},
-                       {0, 0, 1}, {0, 1, 0}, {2, 0, 0}, 0.285875},
-        FormFactorCase{"perpendicular squares sharing an edge", {0, 0, 0}, {1, 0, 0},
-                       {0, 1, 0}, {0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 0.200044}));
+INSTANTIATE_TEST_SUITE_P(Howell, FormFactorPipeline,
+                         ::testing::Values(FormFactorCase{"parallel squares 1 apart",
+                                                          {0, 0, 0},
+                                                          {1, 0, 0},
+                                                          {0, 1, 0},
+                                                          {0, 0, 1},
+                                                          {0, 1, 0},
+                                                          {1, 0, 0},
+                                                          0.199825},
+                                           FormFactorCase{"parallel squares 0.5 apart",
+                                                          {0, 0, 0},
+                                                          {1, 0, 0},
+                                                          {0, 1, 0},
+                                                          {0, 0, 0.5},
+                                                          {0, 1, 0},
+                                                          {1, 0, 0},
+                                                          0.415253},
+                                           FormFactorCase{"parallel 2x1 rectangles 1 apart",
+                                                          {0, 0, 0},
+                                                          {2, 0, 0},
+                                                          {0, 1, 0},
+                                                          {0, 0, 1},
+                                                          {0, 1, 0},
+                                                          {2, 0, 0},
+                                                          0.285875},
+                                           FormFactorCase{"perpendicular squares sharing an edge",
+                                                          {0, 0, 0},
+                                                          {1, 0, 0},
+                                                          {0, 1, 0},
+                                                          {0, 0, 0},
+                                                          {0, 1, 0},
+                                                          {0, 0, 1},
+                                                          0.200044}));
 
 // ---- Furnace (§2): closed box, uniform E and ρ → B = E / (1 − ρ) everywhere ----
 
@@ -125,8 +147,7 @@ void expect_cube_face_means(const app::BakeResult& r, double rho, double toleran
         double direct = to_photometric(polygon_mean(r, r.solution.irradiance_direct, face));
         double indirect = to_photometric(polygon_mean(r, r.solution.irradiance_indirect, face));
         EXPECT_NEAR(direct, direct_expected, tolerance * direct_expected) << "face " << face;
-        EXPECT_NEAR(indirect, indirect_expected, tolerance * indirect_expected)
-            << "face " << face;
+        EXPECT_NEAR(indirect, indirect_expected, tolerance * indirect_expected) << "face " << face;
     }
 }
 
@@ -162,8 +183,7 @@ TEST_P(Cie171CubeHierarchical, FaceMeansOfDirectAndIndirectIlluminance) {
     EXPECT_NEAR(r.stats.power.relative_imbalance(), 0.0, 5e-3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Reflectances, Cie171CubeHierarchical,
-                         ::testing::Values(0.2, 0.8, 0.95));
+INSTANTIATE_TEST_SUITE_P(Reflectances, Cie171CubeHierarchical, ::testing::Values(0.2, 0.8, 0.95));
 
 // ---- CIE 171 5.3 (§3): 1 × 1 m panel of 1000 cd/m² in the ceiling, all surfaces black ----
 
@@ -203,8 +223,8 @@ TEST(Cie171AreaSource, DirectIlluminanceAtSensors) {
         // The README's exact values are rounded to 0.01 lx; allow that on top of 0.1 %.
         EXPECT_NEAR(r.sensors[i].illuminance_direct_lx, exact, 0.001 * exact + 0.005)
             << s.name << " sensor " << i;
-        auto interpolated = interpolate_at(r.mesh, r.solution.vertex_irradiance_direct,
-                                           s.position, s.normal, 1e-6);
+        auto interpolated =
+            interpolate_at(r.mesh, r.solution.vertex_irradiance_direct, s.position, s.normal, 1e-6);
         ASSERT_TRUE(interpolated.has_value()) << "sensor " << i << " not on the mesh";
         EXPECT_NEAR(to_photometric(*interpolated), exact, 0.02 * exact) << "mesh, sensor " << i;
     }
@@ -411,7 +431,8 @@ INSTANTIATE_TEST_SUITE_P(Methods, SpotInClosedRoom,
 Sun make_sun(double altitude_deg, double azimuth_deg, double illuminance_lx) {
     const double alt = altitude_deg * k_pi / 180, az = azimuth_deg * k_pi / 180;
     return Sun{{std::cos(alt) * std::cos(az), std::cos(alt) * std::sin(az), std::sin(alt)},
-               from_photometric(illuminance_lx, Rgb(1.0f)), 0.533};
+               from_photometric(illuminance_lx, Rgb(1.0f)),
+               0.533};
 }
 
 // The visible fraction of the sun's disc from x past a straight blocker edge through p along
@@ -473,8 +494,7 @@ TEST_P(SunOverBlackFloor, DirectIlluminanceIsEnCosThetaTimesVisibleDisc) {
         } else if (s.name == "umbra") {
             EXPECT_EQ(got, 0.0) << "sensor " << i;
         } else {
-            const double v =
-                visible_past_edge(sun, s.position, {1, 0, 2}, {0, 1, 0}, {0, 0, 2});
+            const double v = visible_past_edge(sun, s.position, {1, 0, 2}, {0, 1, 0}, {0, 0, 2});
             worst_penumbra = std::max(worst_penumbra, std::abs(got / open_lx - v));
             EXPECT_GT(got, 0.0) << "sensor " << i;
             EXPECT_LT(got, open_lx) << "sensor " << i;
@@ -497,8 +517,7 @@ TEST_P(SunOverBlackFloor, DirectIlluminanceIsEnCosThetaTimesVisibleDisc) {
     EXPECT_LT(std::abs(pb.relative_imbalance()), 1e-5);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, SunOverBlackFloor,
-                         ::testing::Values("hierarchical", "shooting"));
+INSTANTIATE_TEST_SUITE_P(Methods, SunOverBlackFloor, ::testing::Values("hierarchical", "shooting"));
 
 // A closed grey room (ρ = 0.5, walls two-sided) with a 1 × 1 m window in the wall x = 0, the
 // sun at 35° altitude from −x: the power entering through the window, E_n A cos(window
@@ -532,7 +551,8 @@ TEST_P(SunThroughWindow, PowerBalances) {
     for (std::size_t e = 0; e < r.mesh.element_count(); ++e) {
         const double lm = to_photometric(r.solution.irradiance_direct[e]) * r.mesh.element_area[e];
         direct_lm += lm;
-        const Vec3 c = r.mesh.centroid(std::uint32_t(e)) + r.mesh.patch_of(std::uint32_t(e)).normal * 0.01;
+        const Vec3 c =
+            r.mesh.centroid(std::uint32_t(e)) + r.mesh.patch_of(std::uint32_t(e)).normal * 0.01;
         if (c.x > 0 && c.x < 4 && c.y > 0 && c.y < 3 && c.z > 0 && c.z < 2.5)
             inside_lm += lm;
     }
@@ -546,8 +566,7 @@ TEST_P(SunThroughWindow, PowerBalances) {
                 GetParam(), inside_lm, through_window_lm,
                 std::abs(inside_lm - through_window_lm) / through_window_lm, emitted,
                 outside_lm + through_window_lm, to_photometric(pb.absorbed),
-                to_photometric(pb.escaped), to_photometric(pb.residual),
-                pb.relative_imbalance());
+                to_photometric(pb.escaped), to_photometric(pb.residual), pb.relative_imbalance());
     EXPECT_NEAR(inside_lm, through_window_lm, 5e-3 * through_window_lm);
     EXPECT_NEAR(emitted, direct_lm, 1e-5 * emitted);
     EXPECT_NEAR(emitted, outside_lm + through_window_lm, 5e-3 * emitted);

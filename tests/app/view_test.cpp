@@ -58,8 +58,8 @@ const char* const k_regenerate =
 constexpr double k_max_edge_m = 0.08;
 constexpr double k_residual = 0.01;
 
-using test::RunResult;
 using test::run_cli;
+using test::RunResult;
 
 struct Picture {
     int width = 0, height = 0;
@@ -198,7 +198,8 @@ TEST_F(ViewTest, RadiosityIsEmissionPlusReflectedIrradiance) {
     const vtkIdType stride = std::max<vtkIdType>(1, grid->GetNumberOfCells() / 200);
     for (vtkIdType i = 0; i < grid->GetNumberOfCells(); i += stride) {
         for (int k = 0; k < 3; ++k) {
-            const double expected = e->GetComponent(i, k) + rho->GetComponent(i, k) * h->GetComponent(i, k);
+            const double expected =
+                e->GetComponent(i, k) + rho->GetComponent(i, k) * h->GetComponent(i, k);
             EXPECT_NEAR(b->GetComponent(i, k), expected, 1e-5 * std::max(1.0, expected) + 1e-7)
                 << "element " << i << " channel " << k;
         }
@@ -213,7 +214,8 @@ TEST_F(ViewTest, SeriesStepsAreReadableAndEndWithTheFinalSolution) {
     const std::string pvd = read_text_file(series_path("series.pvd"));
     const std::regex entry("timestep=\"([0-9.eE+-]+)\"[^>]*file=\"([^\"]+)\"");
     std::vector<std::pair<double, std::string>> steps;
-    for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry); it != std::sregex_iterator(); ++it)
+    for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), entry);
+         it != std::sregex_iterator(); ++it)
         steps.emplace_back(std::stod((*it)[1]), (*it)[2]);
     ASSERT_GE(steps.size(), 3u) << pvd;
     EXPECT_EQ(steps.size(), series_result_->series_steps);
@@ -243,7 +245,8 @@ TEST_F(ViewTest, SensorsVtpMatchesTheReadings) {
     vtkDataArray* lx = data->GetPointData()->GetArray("illuminance_total_lx");
     ASSERT_NE(lx, nullptr);
     for (std::size_t i = 0; i < scene_->sensors.size(); ++i)
-        EXPECT_DOUBLE_EQ(lx->GetComponent(vtkIdType(i), 0), result_->sensors[i].illuminance_total_lx);
+        EXPECT_DOUBLE_EQ(lx->GetComponent(vtkIdType(i), 0),
+                         result_->sensors[i].illuminance_total_lx);
 }
 
 #if PENUMBRA_VIEWER_WINDOW
@@ -372,7 +375,8 @@ TEST_F(ViewTest, FalseColourPictureWithScalarBar) {
 }
 
 TEST_F(ViewTest, InteractiveWindowRunsScriptedKeysAndQuits) {
-    RunResult r = run_cli("view " + *series_dir_ + " --size 320x240 --script "
+    RunResult r = run_cli("view " + *series_dir_ +
+                          " --size 320x240 --script "
                           "e,l,a,a,A,p,p,n,s,d,c,pick:160:120,r,pick:1:1,q");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("element "), std::string::npos) << "no picked value: " << r.err;

@@ -18,9 +18,9 @@ std::string source_path(const std::string& relative) {
 
 std::string temp_dir(const std::string& tag) {
     static std::atomic<int> counter{0};
-    fs::path dir = fs::temp_directory_path() /
-                   ("penumbra-test-" + tag + "-" + std::to_string(::getpid()) + "-" +
-                    std::to_string(counter++));
+    fs::path dir =
+        fs::temp_directory_path() / ("penumbra-test-" + tag + "-" + std::to_string(::getpid()) +
+                                     "-" + std::to_string(counter++));
     fs::remove_all(dir);
     fs::create_directories(dir);
     return dir.string();

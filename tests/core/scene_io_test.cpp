@@ -246,7 +246,8 @@ TEST(SceneIo, BadSpotsNameTheKey) {
         const std::string name = "spot" + std::to_string(i++) + ".json";
         write_file(dir, name,
                    lamp_scene(std::string(R"json(, "point_lights": [{"position": [0, 0, 2],
-                   "intensity_cd": 100, "spot": )json") + c.spot + "}]"));
+                   "intensity_cd": 100, "spot": )json") +
+                              c.spot + "}]"));
         expect_one_line_error(dir + "/" + name, c.parts, name);
     }
 }
@@ -361,7 +362,7 @@ TEST(SceneIo, ValidateChecksSunsBuiltInCode) {
     scene.polygons.push_back({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, 0, "floor", "code:0"});
     scene.materials.push_back(Material{});
     Scene ok = scene;
-    validate_scene(ok); // the sun is the emitter
+    validate_scene(ok);                                      // the sun is the emitter
     EXPECT_NEAR(ok.sun->direction.z, std::sqrt(0.5), 1e-15); // normalised in place
     Scene nan = scene;
     nan.sun->direction.x = std::nan("");
@@ -604,13 +605,11 @@ PointLight spot(const Vec3& direction, double beam_deg, double cutoff_deg) {
 // azimuths. The profile is called with full 3D directions, so a wrong axis or an asymmetric
 // profile shows.
 double integrate_profile(const PointLight& light) {
-    constexpr std::array<double, 8> x = {-0.9602898564975363, -0.7966664774136267,
-                                         -0.5255324099163290, -0.1834346424956498,
-                                         0.1834346424956498,  0.5255324099163290,
-                                         0.7966664774136267,  0.9602898564975363};
-    constexpr std::array<double, 8> w = {0.1012285362903763, 0.2223810344533745,
-                                         0.3137066458778873, 0.3626837833783620,
-                                         0.3626837833783620, 0.3137066458778873,
+    constexpr std::array<double, 8> x = {
+        -0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+        0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
+    constexpr std::array<double, 8> w = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                                         0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
                                          0.2223810344533745, 0.1012285362903763};
     const Vec3 axis = light.spot ? light.spot->direction : Vec3(0, 0, 1);
     std::vector<double> breaks = {-1.0, 1.0};
@@ -684,19 +683,17 @@ TEST_P(SpotPower, NumericallyIntegratedProfileEqualsPower) {
     const double numeric = integrate_profile(light);
     const RgbD power = light.power();
     const double relative = std::abs(numeric * light.intensity.r - power.r) / power.r;
-    std::printf("spot beam %g cutoff %g: integral %.12f sr, power()/I %.12f sr, rel. %.2e\n",
-                beam, cutoff, numeric, power.r / light.intensity.r, relative);
+    std::printf("spot beam %g cutoff %g: integral %.12f sr, power()/I %.12f sr, rel. %.2e\n", beam,
+                cutoff, numeric, power.r / light.intensity.r, relative);
     EXPECT_LT(relative, 1e-6);
     EXPECT_NEAR(power.b / power.r, 0.25, 1e-7); // the colour is the intensity's
 }
 
-INSTANTIATE_TEST_SUITE_P(Cones, SpotPower,
-                         ::testing::Values(std::array<double, 2>{20, 35},
-                                           std::array<double, 2>{0, 90},
-                                           std::array<double, 2>{45, 45},
-                                           std::array<double, 2>{60, 150},
-                                           std::array<double, 2>{0, 180},
-                                           std::array<double, 2>{1, 2}));
+INSTANTIATE_TEST_SUITE_P(
+    Cones, SpotPower,
+    ::testing::Values(std::array<double, 2>{20, 35}, std::array<double, 2>{0, 90},
+                      std::array<double, 2>{45, 45}, std::array<double, 2>{60, 150},
+                      std::array<double, 2>{0, 180}, std::array<double, 2>{1, 2}));
 
 } // namespace
 } // namespace penumbra

@@ -137,8 +137,8 @@ TEST_P(BoxOnFloor, HiddenAreaIsTheFootprint) {
     const RadiosityMesh mesh = mesh_of(scene);
     const double footprint = 0.9 * 0.7;
     EXPECT_NEAR(mesh.surfaces[0].hidden_front_m2, footprint, 1e-9) << c.name;
-    EXPECT_NEAR(test::patch_area(mesh, std::uint32_t(test::find_patch(mesh, 0))),
-                16.0 - footprint, 1e-6)
+    EXPECT_NEAR(test::patch_area(mesh, std::uint32_t(test::find_patch(mesh, 0))), 16.0 - footprint,
+                1e-6)
         << c.name;
     // The inside of the box (its faces' back sides) is hidden too.
     for (std::uint32_t face = 1; face <= 5; ++face) {
@@ -161,20 +161,19 @@ TEST_P(BoxOnFloor, HiddenAreaIsTheFootprint) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Cases, BoxOnFloor,
-    ::testing::Values(BoxCase{"open bottom", 0.0, 0.0, false},
-                      BoxCase{"closed", 0.0, 0.0, true},
-                      BoxCase{"rotated", 0.4, 0.0, false},
-                      BoxCase{"floating 1 mm, closed", 0.3, 0.001, true},
-                      BoxCase{"floating 1 mm, open", 0.0, 0.001, false}),
-    [](const auto& info) {
-        std::string s = info.param.name;
-        for (char& ch : s)
-            if (!std::isalnum(static_cast<unsigned char>(ch)))
-                ch = '_';
-        return s;
-    });
+INSTANTIATE_TEST_SUITE_P(Cases, BoxOnFloor,
+                         ::testing::Values(BoxCase{"open bottom", 0.0, 0.0, false},
+                                           BoxCase{"closed", 0.0, 0.0, true},
+                                           BoxCase{"rotated", 0.4, 0.0, false},
+                                           BoxCase{"floating 1 mm, closed", 0.3, 0.001, true},
+                                           BoxCase{"floating 1 mm, open", 0.0, 0.001, false}),
+                         [](const auto& info) {
+                             std::string s = info.param.name;
+                             for (char& ch : s)
+                                 if (!std::isalnum(static_cast<unsigned char>(ch)))
+                                     ch = '_';
+                             return s;
+                         });
 
 TEST(Contacts, CoincidentDuplicateIsHiddenWithAWarning) {
     Scene scene;
@@ -193,7 +192,7 @@ TEST(Contacts, CoincidentDuplicateIsHiddenWithAWarning) {
 TEST(Contacts, BackToBackSlabKeepsBothFronts) {
     Scene scene;
     auto m = add_material(scene, "white", Rgb(0.5f));
-    add_rect(scene, "upper_floor", m, {0, 0, 3}, {4, 0, 0}, {0, 4, 0}); // faces up
+    add_rect(scene, "upper_floor", m, {0, 0, 3}, {4, 0, 0}, {0, 4, 0});   // faces up
     add_rect(scene, "lower_ceiling", m, {0, 0, 3}, {0, 4, 0}, {4, 0, 0}); // faces down
     const RadiosityMesh mesh = mesh_of(scene);
     EXPECT_GE(test::find_patch(mesh, 0, false), 0);
@@ -205,8 +204,8 @@ TEST(Contacts, BackToBackSlabKeepsBothFronts) {
 TEST(Contacts, ThinPanelOnWallHidesTheWallBehindIt) {
     Scene scene;
     auto m = add_material(scene, "white", Rgb(0.5f));
-    add_rect(scene, "wall", m, {0, 0, 0}, {0, 4, 0}, {0, 0, 3});             // faces +x
-    add_rect(scene, "panel", m, {0.0015, 1, 1}, {0, 1, 0}, {0, 0, 1});       // 1.5 mm off it
+    add_rect(scene, "wall", m, {0, 0, 0}, {0, 4, 0}, {0, 0, 3});       // faces +x
+    add_rect(scene, "panel", m, {0.0015, 1, 1}, {0, 1, 0}, {0, 0, 1}); // 1.5 mm off it
     const RadiosityMesh mesh = mesh_of(scene);
     EXPECT_NEAR(mesh.surfaces[0].hidden_front_m2, 1.0, 1e-9);
     EXPECT_NEAR(mesh.surfaces[1].hidden_back_m2, 1.0, 1e-9);
@@ -218,11 +217,11 @@ TEST(Contacts, DegenerateInputNeverCrashes) {
     auto m = add_material(scene, "white", Rgb(0.5f));
     add_rect(scene, "floor", m, {0, 0, 0}, {4, 0, 0}, {0, 4, 0});
     Polygon collinear{{{1, 1, 0}, {2, 1, 0}, {3, 1, 0}}, m, "collinear", "test:collinear"};
-    Polygon sliver{{{0.5, 0.5, 0.2}, {3.5, 0.5, 0.2}, {3.5, 0.5 + 1e-7, 0.2}}, m, "sliver",
-                   "test:sliver"};
+    Polygon sliver{
+        {{0.5, 0.5, 0.2}, {3.5, 0.5, 0.2}, {3.5, 0.5 + 1e-7, 0.2}}, m, "sliver", "test:sliver"};
     Polygon bowtie{{{1, 2, 1}, {2, 3, 1}, {2, 2, 1}, {1, 3, 1}}, m, "bowtie", "test:bowtie"};
-    Polygon repeated{{{3, 3, 0.5}, {3, 3, 0.5}, {3.5, 3, 0.5}, {3.5, 3.5, 0.5}}, m, "repeated",
-                     "test:repeated"};
+    Polygon repeated{
+        {{3, 3, 0.5}, {3, 3, 0.5}, {3.5, 3, 0.5}, {3.5, 3.5, 0.5}}, m, "repeated", "test:repeated"};
     scene.polygons.push_back(collinear);
     scene.polygons.push_back(sliver);
     scene.polygons.push_back(bowtie);
@@ -265,8 +264,10 @@ TEST(Contacts, RandomSoupNeverCrashes) {
                 v = {0, 0, r(0.1, 1.5)};
                 o.z = std::round(o.z * 2) / 2 + (i % 3 == 0 ? 0.001 : 0.0);
             }
-            Polygon p{{o, o + u, o + u + v, o + v}, i % 9 == 0 ? lamp : white,
-                      "p" + std::to_string(i), "soup"};
+            Polygon p{{o, o + u, o + u + v, o + v},
+                      i % 9 == 0 ? lamp : white,
+                      "p" + std::to_string(i),
+                      "soup"};
             if (kind == 3)
                 p.vertices = {o, o + u, o + u * 2.0}; // collinear
             scene.polygons.push_back(p);

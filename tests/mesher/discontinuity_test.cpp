@@ -117,10 +117,10 @@ int check_shadow_edge(const RadiosityMesh& mesh, std::uint32_t floor,
     int checked = 0, run_start = -1;
     auto close_run = [&](int end) {
         if (run_start >= 0 && end - run_start >= 2) {
-            EXPECT_TRUE(test::segment_on_element_edges(mesh, floor, point(run_start),
-                                                       point(end - 1), tol))
-                << "light vertex " << k << ", shadow edge " << i << ", samples " << run_start
-                << "-" << end - 1;
+            EXPECT_TRUE(
+                test::segment_on_element_edges(mesh, floor, point(run_start), point(end - 1), tol))
+                << "light vertex " << k << ", shadow edge " << i << ", samples " << run_start << "-"
+                << end - 1;
             ++checked;
         }
         run_start = -1;
@@ -291,7 +291,8 @@ TEST(Discontinuity, SpotCastsBoundariesOnlyInsideItsCone) {
 Sun make_sun(double altitude_deg, double azimuth_deg) {
     const double alt = altitude_deg * k_pi / 180, az = azimuth_deg * k_pi / 180;
     return Sun{{std::cos(alt) * std::cos(az), std::cos(alt) * std::sin(az), std::sin(alt)},
-               Rgb(500.0f), 0.533};
+               Rgb(500.0f),
+               0.533};
 }
 
 // The direction of the sun's rim at angle phi around its centre.
@@ -330,7 +331,9 @@ std::array<Vec3, 2> extreme_rim_directions(const Sun& sun, const Vec3& p, const 
 }
 
 // The shadow of p on the floor z = 0 along the direction d toward the sun.
-Vec3 floor_shadow(const Vec3& p, const Vec3& d) { return p - d * (p.z / d.z); }
+Vec3 floor_shadow(const Vec3& p, const Vec3& d) {
+    return p - d * (p.z / d.z);
+}
 
 Poly2 direction_shadow(const BoxScene& b, const Vec3& d) {
     std::vector<std::array<double, 2>> pts(b.footprint.begin(), b.footprint.end());
@@ -501,9 +504,10 @@ TEST(Discontinuity, SunCastsNothingOnAReceiverFacingAway) {
         const auto wall = std::uint32_t(b.scene.polygons.size());
         add_rect(b.scene, "wall", wall_material, {3.0, 1.5, 0}, {0, 2, 0}, {0, 0, 1.5}); // faces +x
         const RadiosityMesh mesh = mesher::build_mesh(b.scene, test::quiet_context());
-        const auto on_wall = std::count_if(
-            mesh.discontinuities.begin(), mesh.discontinuities.end(),
-            [&](const DiscontinuitySegment& d) { return mesh.surfaces[d.surface].polygon == wall; });
+        const auto on_wall = std::count_if(mesh.discontinuities.begin(), mesh.discontinuities.end(),
+                                           [&](const DiscontinuitySegment& d) {
+                                               return mesh.surfaces[d.surface].polygon == wall;
+                                           });
         if (two_sided)
             EXPECT_GT(on_wall, 0);
         else

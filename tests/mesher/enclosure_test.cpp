@@ -13,8 +13,8 @@ namespace {
 
 // Adds the parallelogram origin + [0, 1]·u + [0, 1]·v (normal along u × v) split into k × k
 // quads, leaving out the quads [hole_lo, hole_hi) in both directions.
-void add_tiles(std::vector<Surface>& out, const Vec3& origin, const Vec3& u, const Vec3& v,
-               int k, int hole_lo = 0, int hole_hi = 0) {
+void add_tiles(std::vector<Surface>& out, const Vec3& origin, const Vec3& u, const Vec3& v, int k,
+               int hole_lo = 0, int hole_hi = 0) {
     for (int i = 0; i < k; ++i)
         for (int j = 0; j < k; ++j) {
             if (i >= hole_lo && i < hole_hi && j >= hole_lo && j < hole_hi)
@@ -50,8 +50,8 @@ Setup tiled_box(int k, bool hole) {
     // the hole, but the source near its corner, at (0.5, 0.5, 3), is seen through it from the
     // bottom's middle.
     Surface panel;
-    EXPECT_TRUE(make_surface(
-        {{0.46, 0.46, 3}, {0.46, 1.26, 3}, {1.26, 1.26, 3}, {1.26, 0.46, 3}}, panel));
+    EXPECT_TRUE(
+        make_surface({{0.46, 0.46, 3}, {0.46, 1.26, 3}, {1.26, 1.26, 3}, {1.26, 0.46, 3}}, panel));
     panel.id = std::uint32_t(b.surfaces.size());
     panel.emits_front = true;
     b.surfaces.push_back(panel);

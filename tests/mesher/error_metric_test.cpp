@@ -121,8 +121,7 @@ void report(const char* scene, const Metric& disc, const Metric& uniform) {
 TEST(ErrorMetric, DiscontinuityMeshHalvesTheErrorOfTheBoxOnTheFloor) {
     const test::BoxUnderLight b = test::box_under_light(0.25);
     const Exact exact = [&](const Vec3& p) {
-        return test::exact_irradiance(p, {0, 0, 1}, b.light_vertices, b.radiance,
-                                      {b.box_vertices});
+        return test::exact_irradiance(p, {0, 0, 1}, b.light_vertices, b.radiance, {b.box_vertices});
     };
     const auto& fp = b.footprint;
     const std::vector<Vec3> points = floor_points(
@@ -162,8 +161,8 @@ void cornell_report(Scene scene) {
     for (std::size_t e = 0; e < disc_mesh.element_count(); ++e)
         if (disc_mesh.element_patch[e] == floor) {
             const auto& t = disc_mesh.triangles[e];
-            floor_tris.push_back({disc_mesh.vertex(t[0]), disc_mesh.vertex(t[1]),
-                                  disc_mesh.vertex(t[2]), 0, 0, 0});
+            floor_tris.push_back(
+                {disc_mesh.vertex(t[0]), disc_mesh.vertex(t[1]), disc_mesh.vertex(t[2]), 0, 0, 0});
         }
     const Polygon& f = scene.polygons[0];
     const std::vector<Vec3> points = floor_points(
@@ -181,8 +180,9 @@ void cornell_report(Scene scene) {
     const RadiosityMesh uniform_mesh = uniform_with_count(scene, disc_mesh.element_count());
     const Metric disc = measure(disc_mesh, 0, points, {0, 1, 0}, exact);
     const Metric uniform = measure(uniform_mesh, 0, points, {0, 1, 0}, exact);
-    const std::string name = "Cornell box, " + std::to_string(int(std::lround(
-                                 1000 * scene.mesher.max_edge_length))) + " mm (green)";
+    const std::string name = "Cornell box, " +
+                             std::to_string(int(std::lround(1000 * scene.mesher.max_edge_length))) +
+                             " mm (green)";
     report(name.c_str(), disc, uniform);
     EXPECT_NEAR(double(uniform.elements) / double(disc.elements), 1.0, 0.05);
 }
@@ -201,11 +201,11 @@ TEST(ExactDirect, AgreesWithLambertAndBlocksCompletely) {
     const double open = test::exact_irradiance(p, n, light, 1.0, {});
     EXPECT_NEAR(open, test::polygon_irradiance(p, n, light), 1e-12);
     EXPECT_NEAR(open, 1.0 / 4.0, 0.02); // ≈ L A / h² for a small source
-    const std::vector<Vec3> slab{{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1},
+    const std::vector<Vec3> slab{{-1, -1, 1},   {1, -1, 1},   {1, 1, 1},   {-1, 1, 1},
                                  {-1, -1, 1.1}, {1, -1, 1.1}, {1, 1, 1.1}, {-1, 1, 1.1}};
     EXPECT_NEAR(test::exact_irradiance(p, n, light, 1.0, {slab}), 0.0, 1e-12);
     // A blocker over exactly half of the light, by symmetry.
-    const std::vector<Vec3> half{{0, -1, 1}, {1, -1, 1}, {1, 1, 1}, {0, 1, 1},
+    const std::vector<Vec3> half{{0, -1, 1},   {1, -1, 1},   {1, 1, 1},   {0, 1, 1},
                                  {0, -1, 1.1}, {1, -1, 1.1}, {1, 1, 1.1}, {0, 1, 1.1}};
     EXPECT_NEAR(test::exact_irradiance(p, n, light, 1.0, {half}), open / 2, 1e-9);
     // Two overlapping blockers count once.

@@ -17,9 +17,8 @@ double cross2(const P2& o, const P2& a, const P2& b) {
 }
 
 std::vector<P2> convex_hull(std::vector<P2> p) {
-    std::sort(p.begin(), p.end(), [](const P2& a, const P2& b) {
-        return a.x < b.x || (a.x == b.x && a.y < b.y);
-    });
+    std::sort(p.begin(), p.end(),
+              [](const P2& a, const P2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
     if (p.size() < 3)
         return p;
     std::vector<P2> h(2 * p.size());

@@ -16,17 +16,16 @@ namespace penumbra {
 namespace {
 
 struct DarkRoom {
-    double lit_mean = 0;        ///< mean interpolated illuminance on the lit room's floor, lx
-    double dark_max = 0;        ///< largest interpolated illuminance in the dark room, lx
-    double lit_pixel_mean = 0;  ///< mean luminance of a view of the lit room, cd/m²
-    double dark_pixel_max = 0;  ///< brightest pixel of a view of the dark room's wall foot
+    double lit_mean = 0;       ///< mean interpolated illuminance on the lit room's floor, lx
+    double dark_max = 0;       ///< largest interpolated illuminance in the dark room, lx
+    double lit_pixel_mean = 0; ///< mean luminance of a view of the lit room, cd/m²
+    double dark_pixel_max = 0; ///< brightest pixel of a view of the dark room's wall foot
     int samples = 0;
 };
 
 double illuminance_at(const app::BakeResult& r, const Vec3& p, const Vec3& n) {
     const auto direct = interpolate_at(r.mesh, r.solution.vertex_irradiance_direct, p, n, 1e-6);
-    const auto indirect =
-        interpolate_at(r.mesh, r.solution.vertex_irradiance_indirect, p, n, 1e-6);
+    const auto indirect = interpolate_at(r.mesh, r.solution.vertex_irradiance_indirect, p, n, 1e-6);
     if (!direct || !indirect)
         return -1;
     return to_photometric(*direct + *indirect);

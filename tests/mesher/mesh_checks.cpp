@@ -106,8 +106,8 @@ bool segment_on_element_edges(const RadiosityMesh& mesh, std::uint32_t patch, co
     return true;
 }
 
-bool element_straddles(const RadiosityMesh& mesh, std::uint32_t patch, const Vec3& a,
-                       const Vec3& b, double tol) {
+bool element_straddles(const RadiosityMesh& mesh, std::uint32_t patch, const Vec3& a, const Vec3& b,
+                       double tol) {
     const Vec3 n = mesh.patches[patch].normal;
     const Vec3 side = normalize(cross(n, b - a));
     const Vec3 d = normalize(b - a);

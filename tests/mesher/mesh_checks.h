@@ -33,7 +33,7 @@ bool segment_on_element_edges(const RadiosityMesh& mesh, std::uint32_t patch, co
 
 /// Whether some element of \p patch has points strictly on both sides of the line through
 /// a and b (in the patch plane) within the segment's extent: an element straddling it.
-bool element_straddles(const RadiosityMesh& mesh, std::uint32_t patch, const Vec3& a,
-                       const Vec3& b, double tol);
+bool element_straddles(const RadiosityMesh& mesh, std::uint32_t patch, const Vec3& a, const Vec3& b,
+                       double tol);
 
 } // namespace penumbra::test

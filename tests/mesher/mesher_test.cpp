@@ -40,7 +40,8 @@ TEST(Mesher, SquareBecomesTwoSidedMesh) {
         EXPECT_EQ(mesh.element_twin[std::size_t(mesh.element_twin[e])], std::int32_t(e));
         // Winding agrees with the side's normal.
         const auto& t = mesh.triangles[e];
-        Vec3 n = cross(mesh.vertex(t[1]) - mesh.vertex(t[0]), mesh.vertex(t[2]) - mesh.vertex(t[0]));
+        Vec3 n =
+            cross(mesh.vertex(t[1]) - mesh.vertex(t[0]), mesh.vertex(t[2]) - mesh.vertex(t[0]));
         EXPECT_GT(dot(n, mesh.patch_of(std::uint32_t(e)).normal), 0);
     }
     test::expect_conforming(mesh, 0, 4.0);
@@ -135,7 +136,8 @@ Scene load_with_mesher(const std::string& mesher_json) {
     const std::string path = dir + "/scene.json";
     std::ofstream(path) << R"({"units": "mm", "materials": {"lamp": {"emission": 1}},
         "polygons": [{"material": "lamp", "vertices": [[0,0,0],[1000,0,0],[1000,1000,0]]}],
-        "mesher": )" << mesher_json << "}";
+        "mesher": )" << mesher_json
+                        << "}";
     return load_scene(path);
 }
 

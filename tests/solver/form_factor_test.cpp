@@ -39,7 +39,8 @@ TEST(FormFactor, PointBelowCoaxialDisc) {
     double f = 0;
     // Sum over a fan of triangles so that the 16-vertex limit of the kernel is not hit.
     for (int i = 0; i < n; ++i) {
-        std::array<Vec3, 3> tri{Vec3(0, 0, h), disc[std::size_t(i)], disc[std::size_t((i + 1) % n)]};
+        std::array<Vec3, 3> tri{Vec3(0, 0, h), disc[std::size_t(i)],
+                                disc[std::size_t((i + 1) % n)]};
         f += form_factor_point_triangle({0, 0, 0}, {0, 0, 1}, tri);
     }
     double r_eff2 = R * R * std::sin(2 * k_pi / n) / (2 * k_pi / n);
@@ -59,10 +60,11 @@ TEST(FormFactor, ClipsPartBelowTangentPlane) {
 TEST(FormFactor, ClosedCubeSumsToOne) {
     // From the centre of the floor of a unit cube the five other faces fill the hemisphere.
     Vec3 x(0.5, 0.5, 0), n(0, 0, 1);
-    Vec3 faces[5][4] = {
-        {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}, {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}},
-        {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}}, {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}},
-        {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}};
+    Vec3 faces[5][4] = {{{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+                        {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}},
+                        {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}},
+                        {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}},
+                        {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}};
     double sum = 0;
     for (auto& f : faces)
         sum += form_factor_point_polygon(x, n, f, 4);
@@ -226,7 +228,8 @@ double brute_force_fraction(const OrientedTriangle& a, const OrientedTriangle& b
 // pair are made (the other follows by reciprocity): the large end's quadrature points do not
 // resolve where the transfer is.
 TEST(PairFormFactor, VisibleFractionWeighsTheTransferNearACommonEdge) {
-    const OrientedTriangle wall{{Vec3(0, -0.2, 0), Vec3(0, 0.2, 0), Vec3(0, 0, 0.3)}, Vec3(1, 0, 0)};
+    const OrientedTriangle wall{{Vec3(0, -0.2, 0), Vec3(0, 0.2, 0), Vec3(0, 0, 0.3)},
+                                Vec3(1, 0, 0)};
     const OrientedTriangle floor{{Vec3(0, -3, 0), Vec3(0, 3, 0), Vec3(4, 0, 0)}, Vec3(0, 0, 1)};
     const BoxOccluder ridge(Vec3(1.0, -4, -0.1), Vec3(1.2, 4, 0.6));
     const double reference = brute_force_fraction(wall, floor, ridge, 4000000);

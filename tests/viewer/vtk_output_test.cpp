@@ -332,7 +332,8 @@ vtkSmartPointer<vtkPolyData> read_vtp(const std::string& path) {
 
 TEST(WriteVtp, Sensors) {
     Scene scene;
-    scene.sensors = {{"desk", Vec3(1, 2, 0.8), Vec3(0, 0, 1)}, {"wall", Vec3(0, 1, 1), Vec3(1, 0, 0)}};
+    scene.sensors = {{"desk", Vec3(1, 2, 0.8), Vec3(0, 0, 1)},
+                     {"wall", Vec3(0, 1, 1), Vec3(1, 0, 0)}};
     std::vector<SensorReading> readings(2);
     readings[0] = {Rgb(1, 2, 3), Rgb(2, 3, 4), 100.5, 250.25};
     readings[1] = {Rgb(0.5f), Rgb(0.75f), 10, 20};
@@ -347,10 +348,14 @@ TEST(WriteVtp, Sensors) {
     vtkPointData* points = data->GetPointData();
     ASSERT_NE(points->GetNormals(), nullptr);
     EXPECT_EQ(points->GetNormals()->GetComponent(1, 0), 1.0);
-    expect_rgb_array(points, "irradiance_direct", {readings[0].irradiance_direct, readings[1].irradiance_direct});
-    expect_rgb_array(points, "irradiance_total", {readings[0].irradiance_total, readings[1].irradiance_total});
-    expect_scalar_array(points, "illuminance_direct_lx", VTK_DOUBLE, std::vector<double>{100.5, 10});
-    expect_scalar_array(points, "illuminance_total_lx", VTK_DOUBLE, std::vector<double>{250.25, 20});
+    expect_rgb_array(points, "irradiance_direct",
+                     {readings[0].irradiance_direct, readings[1].irradiance_direct});
+    expect_rgb_array(points, "irradiance_total",
+                     {readings[0].irradiance_total, readings[1].irradiance_total});
+    expect_scalar_array(points, "illuminance_direct_lx", VTK_DOUBLE,
+                        std::vector<double>{100.5, 10});
+    expect_scalar_array(points, "illuminance_total_lx", VTK_DOUBLE,
+                        std::vector<double>{250.25, 20});
     EXPECT_EQ(string_values(points->GetAbstractArray("name")),
               (std::vector<std::string>{"desk", "wall"}));
     EXPECT_THROW(write_sensors_vtp(path, scene, {}), InternalError);
@@ -396,11 +401,16 @@ TEST(WritePvd, SeriesStepsAndReplacement) {
     const std::string pvd = read_text_file(dir + "/series.pvd");
     EXPECT_NE(pvd.find("type=\"Collection\""), std::string::npos) << pvd;
     EXPECT_NE(pvd.find("timestep=\"10\" group=\"\" part=\"0\" file=\"series/mesh_00000010.vtu\""),
-              std::string::npos) << pvd;
+              std::string::npos)
+        << pvd;
     EXPECT_NE(pvd.find("timestep=\"20\" group=\"\" part=\"0\" file=\"series/mesh_00000020.vtu\""),
-              std::string::npos) << pvd;
+              std::string::npos)
+        << pvd;
     EXPECT_EQ(read_vtu(dir + "/series/mesh_00000020.vtu")
-                  ->GetCellData()->GetArray("radiosity")->GetComponent(0, 0), 42.0);
+                  ->GetCellData()
+                  ->GetArray("radiosity")
+                  ->GetComponent(0, 0),
+              42.0);
 
     EXPECT_TRUE(remove_series(dir));
     EXPECT_FALSE(fs::exists(dir + "/series.pvd"));

@@ -9,8 +9,8 @@
 #include "view_scene.h"
 #include "virtual_display.h"
 
-#include <fmt/format.h>
 #include <X11/Xlib.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -77,8 +77,8 @@ void check_png_path(const std::string& png) {
     const fs::path folder = fs::absolute(png).parent_path();
     std::error_code ec;
     if (!fs::is_directory(folder, ec))
-        throw ConfigError(fmt::format("--png '{}': folder '{}' does not exist", png,
-                                      folder.string()));
+        throw ConfigError(
+            fmt::format("--png '{}': folder '{}' does not exist", png, folder.string()));
 }
 
 } // namespace

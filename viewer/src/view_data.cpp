@@ -106,7 +106,8 @@ double value_of(vtkDataArray* a, vtkIdType i) {
 double luminance_of(vtkDataArray* radiosity, vtkIdType i) {
     return (k_lum_weight_r * radiosity->GetComponent(i, 0) +
             k_lum_weight_g * radiosity->GetComponent(i, 1) +
-            k_lum_weight_b * radiosity->GetComponent(i, 2)) / k_pi;
+            k_lum_weight_b * radiosity->GetComponent(i, 2)) /
+           k_pi;
 }
 
 double cell_area(vtkDataSet* data, vtkIdType cell_id) {
@@ -214,14 +215,16 @@ void ViewData::open_folder_or_file(const std::string& input) {
         folder = input;
         file = fs::exists(folder / "series.pvd", ec) ? folder / "series.pvd" : folder / "mesh.vtu";
         if (!fs::exists(file, ec))
-            throw InputError(input, "", "no series.pvd or mesh.vtu in this folder; run "
-                                        "'penumbra bake' with '-o' this folder first");
+            throw InputError(input, "",
+                             "no series.pvd or mesh.vtu in this folder; run "
+                             "'penumbra bake' with '-o' this folder first");
     }
     source_ = file.string();
     const std::string ext = file.extension().string();
     if (ext != ".pvd" && ext != ".vtu" && ext != ".vtp")
-        throw InputError(source_, "", "not something penumbra view shows: give an output "
-                                      "folder, or a .vtu, .vtp or .pvd file");
+        throw InputError(source_, "",
+                         "not something penumbra view shows: give an output "
+                         "folder, or a .vtu, .vtp or .pvd file");
     if (ext == ".pvd")
         read_pvd(source_);
     else

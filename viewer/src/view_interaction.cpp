@@ -30,10 +30,12 @@ public:
     static ViewStyle* New();
     vtkTypeMacro(ViewStyle, vtkInteractorStyleTrackballCamera)
 
-    ViewScene* scene = nullptr;
+        ViewScene* scene = nullptr;
     std::exception_ptr failure; ///< an error inside a callback, rethrown after the loop
 
-    void OnChar() override { guarded([&] { handle_key(); }); }
+    void OnChar() override {
+        guarded([&] { handle_key(); });
+    }
     void OnKeyPress() override {}
     void OnLeftButtonDown() override {
         Interactor->GetEventPosition(press_);
@@ -68,17 +70,46 @@ private:
             return;
         }
         switch (key) {
-        case 'a': scene->cycle_array(+1); break;
-        case 'A': scene->cycle_array(-1); break;
-        case 'l': case 'L': scene->toggle_log(); break;
-        case 'e': case 'E': scene->toggle_edges(); break;
-        case 'n': case 'N': scene->change_step(+1); break;
-        case 'p': case 'P': scene->change_step(-1); break;
-        case 'c': case 'C': scene->scene_camera(); break;
-        case 'r': case 'R': scene->fit_camera(); break;
-        case 's': case 'S': scene->toggle_sensors(); break;
-        case 'd': case 'D': scene->toggle_discontinuities(); break;
-        default: return;
+        case 'a':
+            scene->cycle_array(+1);
+            break;
+        case 'A':
+            scene->cycle_array(-1);
+            break;
+        case 'l':
+        case 'L':
+            scene->toggle_log();
+            break;
+        case 'e':
+        case 'E':
+            scene->toggle_edges();
+            break;
+        case 'n':
+        case 'N':
+            scene->change_step(+1);
+            break;
+        case 'p':
+        case 'P':
+            scene->change_step(-1);
+            break;
+        case 'c':
+        case 'C':
+            scene->scene_camera();
+            break;
+        case 'r':
+        case 'R':
+            scene->fit_camera();
+            break;
+        case 's':
+        case 'S':
+            scene->toggle_sensors();
+            break;
+        case 'd':
+        case 'D':
+            scene->toggle_discontinuities();
+            break;
+        default:
+            return;
         }
         rwi->Render();
     }
@@ -115,8 +146,8 @@ struct ScriptPlayer {
         const bool escape = event == "Escape";
         const char key = escape ? char(27) : event[0];
         const std::string sym = escape ? "Escape" : event;
-        interactor->SetKeyEventInformation(0, std::isupper(static_cast<unsigned char>(key)), key,
-                                           1, sym.c_str());
+        interactor->SetKeyEventInformation(0, std::isupper(static_cast<unsigned char>(key)), key, 1,
+                                           sym.c_str());
         interactor->InvokeEvent(vtkCommand::KeyPressEvent);
         interactor->InvokeEvent(vtkCommand::CharEvent);
         interactor->InvokeEvent(vtkCommand::KeyReleaseEvent);

@@ -191,8 +191,7 @@ void ViewScene::apply_array() {
     else
         mapper_->SetScalarModeToUseCellFieldData();
     mapper_->SelectColorArray(info.name.c_str());
-    mapper_->SetColorMode(true_colour ? VTK_COLOR_MODE_DIRECT_SCALARS
-                                      : VTK_COLOR_MODE_MAP_SCALARS);
+    mapper_->SetColorMode(true_colour ? VTK_COLOR_MODE_DIRECT_SCALARS : VTK_COLOR_MODE_MAP_SCALARS);
     mapper_->SetInterpolateScalarsBeforeMapping(!true_colour && info.point);
     scalar_bar_->SetVisibility(!true_colour);
     bar_title_->SetVisibility(!true_colour);
@@ -257,8 +256,8 @@ void ViewScene::toggle_discontinuities() {
 
 void ViewScene::change_step(int delta) {
     const auto n = data_.steps().size();
-    const auto next = std::clamp(std::ptrdiff_t(state_.step) + delta, std::ptrdiff_t(0),
-                                 std::ptrdiff_t(n) - 1);
+    const auto next =
+        std::clamp(std::ptrdiff_t(state_.step) + delta, std::ptrdiff_t(0), std::ptrdiff_t(n) - 1);
     if (std::size_t(next) == state_.step)
         return;
     state_.step = std::size_t(next);
@@ -312,8 +311,8 @@ void ViewScene::write_png(const std::string& path) {
         writer->SetFileName(temp.c_str());
         writer->Write();
         if (!errors->message.empty())
-            throw ExternalError(fmt::format("cannot write PNG file '{}': {}", path,
-                                            errors->message));
+            throw ExternalError(
+                fmt::format("cannot write PNG file '{}': {}", path, errors->message));
     });
 }
 
@@ -324,16 +323,16 @@ void ViewScene::pick(int x, int y) {
         picked_ = fmt::format("pick ({}, {}): nothing there", x, y);
     } else if (picker->GetActor() == sensors_.GetPointer()) {
         vtkDataSet* sensors = sensors_->GetMapper()->GetInput();
-        auto* names = vtkStringArray::SafeDownCast(
-            sensors->GetPointData()->GetAbstractArray("name"));
+        auto* names =
+            vtkStringArray::SafeDownCast(sensors->GetPointData()->GetAbstractArray("name"));
         vtkDataArray* lx = sensors->GetPointData()->GetArray("illuminance_total_lx");
         const vtkIdType id = picker->GetPointId() >= 0 ? picker->GetPointId() : 0;
         picked_ = fmt::format("sensor '{}': illuminance_total_lx = {}",
                               names ? names->GetValue(id) : std::to_string(id),
                               lx ? format_value(tuple_of(lx, id), "lx") : "?");
     } else {
-        picked_ = describe_surface_pick(picker->GetCellId(), picker->GetPCoords(),
-                                        picker->GetSubId());
+        picked_ =
+            describe_surface_pick(picker->GetCellId(), picker->GetPCoords(), picker->GetSubId());
         const double* p = picker->GetPickPosition();
         picked_ += fmt::format(" at ({:.3f}, {:.3f}, {:.3f}) m", p[0], p[1], p[2]);
     }
@@ -341,8 +340,7 @@ void ViewScene::pick(int x, int y) {
     update_status();
 }
 
-std::string ViewScene::describe_surface_pick(vtkIdType cell, const double pcoords[3],
-                                             int sub_id) {
+std::string ViewScene::describe_surface_pick(vtkIdType cell, const double pcoords[3], int sub_id) {
     const ArrayInfo& info = data_.arrays()[state_.array];
     // True colour is a display encoding: report the radiosity it shows.
     const std::string name = info.name == k_true_colour ? "radiosity" : info.name;
@@ -353,7 +351,8 @@ std::string ViewScene::describe_surface_pick(vtkIdType cell, const double pcoord
     if (!shown)
         return where;
     if (vtkDataArray* a = array_of(current_, name, false))
-        return fmt::format("{}: {} = {}", where, name, format_value(tuple_of(a, cell), shown->unit));
+        return fmt::format("{}: {} = {}", where, name,
+                           format_value(tuple_of(a, cell), shown->unit));
     vtkDataArray* a = array_of(current_, name, true);
     if (!a)
         return where;

@@ -37,8 +37,8 @@ class ViewScene {
 public:
     /// \brief Builds the scene in a window of \p width × \p height; \p offscreen for PNGs.
     ///        \p data must outlive the scene.
-    ViewScene(const ViewData& data, const ViewState& state, int width, int height,
-              bool offscreen, const Context& ctx);
+    ViewScene(const ViewData& data, const ViewState& state, int width, int height, bool offscreen,
+              const Context& ctx);
 
     vtkRenderWindow* window() { return window_; }
     vtkRenderer* renderer() { return renderer_; }

@@ -113,9 +113,8 @@ VirtualDisplay::VirtualDisplay(int width, int height) {
     const std::string screen =
         fmt::format("{}x{}x24", std::max(width, 1280), std::max(height, 1024));
     const std::string fd_text = std::to_string(child_fd);
-    std::vector<std::string> args = {"Xvfb",    "-displayfd", fd_text,  "-screen",
-                                     "0",       screen,       "-nolisten", "tcp",
-                                     "-noreset"};
+    std::vector<std::string> args = {"Xvfb", "-displayfd", fd_text, "-screen", "0",
+                                     screen, "-nolisten",  "tcp",   "-noreset"};
     std::vector<char*> argv;
     for (std::string& a : args)
         argv.push_back(a.data());

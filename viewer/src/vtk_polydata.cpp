@@ -39,8 +39,10 @@ void write_polydata(const std::string& path, vtkPolyData* data) {
 void add_sensor_arrays(vtkPointData* data, const Scene& scene,
                        const std::vector<SensorReading>& readings) {
     const std::size_t n = readings.size();
-    add_rgb(data, "irradiance_direct", n, [&](std::size_t i) { return readings[i].irradiance_direct; });
-    add_rgb(data, "irradiance_total", n, [&](std::size_t i) { return readings[i].irradiance_total; });
+    add_rgb(data, "irradiance_direct", n,
+            [&](std::size_t i) { return readings[i].irradiance_direct; });
+    add_rgb(data, "irradiance_total", n,
+            [&](std::size_t i) { return readings[i].irradiance_total; });
     add_scalar<vtkDoubleArray>(data, "illuminance_direct_lx", n,
                                [&](std::size_t i) { return readings[i].illuminance_direct_lx; });
     add_scalar<vtkDoubleArray>(data, "illuminance_total_lx", n,

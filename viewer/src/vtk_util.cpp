@@ -32,8 +32,8 @@ std::string plain_message(std::string text) {
 
 void ErrorCapture::Execute(vtkObject*, unsigned long, void* call_data) {
     if (message.empty())
-        message = call_data ? plain_message(static_cast<const char*>(call_data))
-                            : "unknown VTK error";
+        message =
+            call_data ? plain_message(static_cast<const char*>(call_data)) : "unknown VTK error";
 }
 
 void ErrorCapture::watch(vtkAlgorithm* algorithm) {
@@ -41,8 +41,7 @@ void ErrorCapture::watch(vtkAlgorithm* algorithm) {
     algorithm->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this);
 }
 
-void add_units(vtkDataObject* data,
-               const std::vector<std::pair<std::string, std::string>>& units) {
+void add_units(vtkDataObject* data, const std::vector<std::pair<std::string, std::string>>& units) {
     vtkNew<vtkStringArray> array;
     array->SetName("units");
     for (const auto& [name, unit] : units)

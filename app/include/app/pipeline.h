@@ -66,16 +66,16 @@ inline constexpr const char* k_solver_state_file = "solver_state.bin";
 /// \brief The options of `penumbra view` as the CLI gives them (see viewer/view.h, which
 ///        this library wraps so that the CLI links the pipeline only).
 struct ViewRequest {
-    std::string input;      ///< output folder or .vtu/.vtp/.pvd file
-    std::string png;        ///< empty = interactive window
-    std::string size;       ///< "WxH" or empty
-    std::string array;      ///< empty = true colour
+    std::string input; ///< output folder or .vtu/.vtp/.pvd file
+    std::string png;   ///< empty = interactive window
+    std::string size;  ///< "WxH" or empty
+    std::string array; ///< empty = true colour
     bool log_scale = false;
     bool edges = false;
     bool sensors = false;
     bool discontinuities = false;
-    int step = -1;          ///< -1 = last
-    std::string script;     ///< comma-separated scripted events (tests)
+    int step = -1;      ///< -1 = last
+    std::string script; ///< comma-separated scripted events (tests)
 };
 
 /// \brief Runs `penumbra view`: the window, or the PNG. Throws ConfigError for bad options.

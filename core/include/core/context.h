@@ -39,10 +39,10 @@ public:
 };
 
 struct Context {
-    std::shared_ptr<LogSink> log;          ///< may be null: messages are dropped
+    std::shared_ptr<LogSink> log;           ///< may be null: messages are dropped
     std::shared_ptr<ProgressSink> progress; ///< may be null
-    int threads = 0;                       ///< 0 = all hardware threads
-    std::uint64_t seed = 0;                ///< master seed of every random stream
+    int threads = 0;                        ///< 0 = all hardware threads
+    std::uint64_t seed = 0;                 ///< master seed of every random stream
     LogLevel min_level = LogLevel::info;
 
     template <typename... Args>
@@ -50,16 +50,13 @@ struct Context {
         if (log && level >= min_level)
             log->write(level, fmt::format(f, std::forward<Args>(args)...));
     }
-    template <typename... Args>
-    void info(fmt::format_string<Args...> f, Args&&... args) const {
+    template <typename... Args> void info(fmt::format_string<Args...> f, Args&&... args) const {
         log_at(LogLevel::info, f, std::forward<Args>(args)...);
     }
-    template <typename... Args>
-    void warn(fmt::format_string<Args...> f, Args&&... args) const {
+    template <typename... Args> void warn(fmt::format_string<Args...> f, Args&&... args) const {
         log_at(LogLevel::warn, f, std::forward<Args>(args)...);
     }
-    template <typename... Args>
-    void debug(fmt::format_string<Args...> f, Args&&... args) const {
+    template <typename... Args> void debug(fmt::format_string<Args...> f, Args&&... args) const {
         log_at(LogLevel::debug, f, std::forward<Args>(args)...);
     }
 };

@@ -28,8 +28,8 @@ struct Patch {
 /// \brief A discontinuity in the illumination (a shadow boundary) that the mesher inserted
 ///        as element edges (issue #5). order: 0 = D0 (value), 1 = D1 (gradient), 2 = D2.
 struct DiscontinuitySegment {
-    Vec3 a, b;                  ///< endpoints, metres
-    std::uint32_t surface = 0;  ///< the receiving planar surface
+    Vec3 a, b;                 ///< endpoints, metres
+    std::uint32_t surface = 0; ///< the receiving planar surface
     /// The source: ≥ 0 the emitting polygon (index into Scene::polygons), -1 the sun,
     /// ≤ -2 the point light Scene::point_lights[-2 - source].
     std::int32_t source = -1;
@@ -40,10 +40,10 @@ struct DiscontinuitySegment {
 ///        triangle of a non-planar one. Hidden parts (under or inside other geometry, or
 ///        covered by a coincident surface) get no elements; their area is kept here.
 struct SurfaceInfo {
-    std::uint32_t polygon = 0;    ///< index into Scene::polygons
-    double area_m2 = 0;           ///< area of the surface (one side)
-    double hidden_front_m2 = 0;   ///< area of the front side left without elements
-    double hidden_back_m2 = 0;    ///< same for the back side (0 for one-sided materials)
+    std::uint32_t polygon = 0;  ///< index into Scene::polygons
+    double area_m2 = 0;         ///< area of the surface (one side)
+    double hidden_front_m2 = 0; ///< area of the front side left without elements
+    double hidden_back_m2 = 0;  ///< same for the back side (0 for one-sided materials)
 };
 
 /// \brief Conforming triangle mesh of all patches. An element is one triangle of one patch,

@@ -21,15 +21,13 @@ using tbb::parallel_for;
 int thread_count(const Context& ctx);
 
 /// Runs \p fn inside a task arena limited to the context's thread count.
-template <typename Fn>
-decltype(auto) run_in_arena(const Context& ctx, Fn&& fn) {
+template <typename Fn> decltype(auto) run_in_arena(const Context& ctx, Fn&& fn) {
     tbb::task_arena arena(thread_count(ctx));
     return arena.execute(std::forward<Fn>(fn));
 }
 
 /// Parallel loop over [0, n) with a fixed grain size. Each index must own its outputs.
-template <typename Fn>
-void parallel_for_index(std::size_t n, std::size_t grain, Fn&& fn) {
+template <typename Fn> void parallel_for_index(std::size_t n, std::size_t grain, Fn&& fn) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain ? grain : 1),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i != r.end(); ++i)

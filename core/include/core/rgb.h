@@ -21,9 +21,24 @@ struct Rgb {
     constexpr Rgb operator*(const Rgb& o) const { return {r * o.r, g * o.g, b * o.b}; }
     constexpr Rgb operator*(float s) const { return {r * s, g * s, b * s}; }
     constexpr Rgb operator/(float s) const { return {r / s, g / s, b / s}; }
-    constexpr Rgb& operator+=(const Rgb& o) { r += o.r; g += o.g; b += o.b; return *this; }
-    constexpr Rgb& operator-=(const Rgb& o) { r -= o.r; g -= o.g; b -= o.b; return *this; }
-    constexpr Rgb& operator*=(float s) { r *= s; g *= s; b *= s; return *this; }
+    constexpr Rgb& operator+=(const Rgb& o) {
+        r += o.r;
+        g += o.g;
+        b += o.b;
+        return *this;
+    }
+    constexpr Rgb& operator-=(const Rgb& o) {
+        r -= o.r;
+        g -= o.g;
+        b -= o.b;
+        return *this;
+    }
+    constexpr Rgb& operator*=(float s) {
+        r *= s;
+        g *= s;
+        b *= s;
+        return *this;
+    }
     constexpr bool operator==(const Rgb& o) const = default;
 
     constexpr float max_component() const { return std::max(r, std::max(g, b)); }
@@ -32,7 +47,9 @@ struct Rgb {
     bool is_finite() const { return std::isfinite(r) && std::isfinite(g) && std::isfinite(b); }
 };
 
-constexpr Rgb operator*(float s, const Rgb& c) { return c * s; }
+constexpr Rgb operator*(float s, const Rgb& c) {
+    return c * s;
+}
 
 /// Double-precision RGB for global accumulations (total power, balances).
 struct RgbD {
@@ -43,7 +60,12 @@ struct RgbD {
     constexpr RgbD operator+(const RgbD& o) const { return {r + o.r, g + o.g, b + o.b}; }
     constexpr RgbD operator-(const RgbD& o) const { return {r - o.r, g - o.g, b - o.b}; }
     constexpr RgbD operator*(double s) const { return {r * s, g * s, b * s}; }
-    constexpr RgbD& operator+=(const RgbD& o) { r += o.r; g += o.g; b += o.b; return *this; }
+    constexpr RgbD& operator+=(const RgbD& o) {
+        r += o.r;
+        g += o.g;
+        b += o.b;
+        return *this;
+    }
     constexpr double sum() const { return r + g + b; }
     constexpr double max_component() const { return std::max(r, std::max(g, b)); }
 };
@@ -61,11 +83,13 @@ inline constexpr double k_lum_weight_b = 0.065;
 /// \brief The one radiometric → photometric conversion: RGB watts (or W/m², W/(sr·m²)) to
 ///        lumens (or lx, cd/m²). Applies to any matching pair of units.
 constexpr double to_photometric(const RgbD& radiometric) {
-    return k_luminous_efficacy_lm_per_w * (k_lum_weight_r * radiometric.r +
-                                           k_lum_weight_g * radiometric.g +
-                                           k_lum_weight_b * radiometric.b);
+    return k_luminous_efficacy_lm_per_w *
+           (k_lum_weight_r * radiometric.r + k_lum_weight_g * radiometric.g +
+            k_lum_weight_b * radiometric.b);
 }
-constexpr double to_photometric(const Rgb& radiometric) { return to_photometric(RgbD(radiometric)); }
+constexpr double to_photometric(const Rgb& radiometric) {
+    return to_photometric(RgbD(radiometric));
+}
 
 /// \brief Radiometric RGB with colour \p color scaled so that its photometric value equals
 ///        \p photometric (lm, lx, cd or cd/m²). A black colour yields black.

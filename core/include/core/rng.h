@@ -45,8 +45,8 @@ public:
     Pcg32(std::uint64_t state_seed, std::uint64_t stream) { seed(state_seed, stream); }
 
     /// A stream named by content: purpose, up to three ids and the master seed.
-    static Pcg32 for_stream(RngPurpose purpose, std::uint64_t a, std::uint64_t b,
-                            std::uint64_t c, std::uint64_t master_seed) {
+    static Pcg32 for_stream(RngPurpose purpose, std::uint64_t a, std::uint64_t b, std::uint64_t c,
+                            std::uint64_t master_seed) {
         std::uint64_t h = hash_words({std::uint64_t(purpose), a, b, c, master_seed});
         return Pcg32(h, mix64(h ^ 0x2545f4914f6cdd1dULL));
     }

@@ -17,9 +17,9 @@ namespace penumbra {
 ///        back side too when emission_two_sided).
 struct Material {
     std::string name;
-    Rgb reflectance{0.5f};      ///< diffuse reflectance ρ, each channel in [0, 1)
-    Rgb emission{};             ///< emitted radiance, W/(sr·m²)
-    bool two_sided = true;      ///< front and back are separate receiving elements
+    Rgb reflectance{0.5f}; ///< diffuse reflectance ρ, each channel in [0, 1)
+    Rgb emission{};        ///< emitted radiance, W/(sr·m²)
+    bool two_sided = true; ///< front and back are separate receiving elements
     bool emission_two_sided = false;
     /// If set, the loader scales emission so that all polygons of this material together emit
     /// this luminous flux (lm); emission then holds the colour until scaling.
@@ -46,8 +46,8 @@ struct SpotCone {
 /// \brief A point light: isotropic, or a spot when \p spot is set.
 struct PointLight {
     std::string name;
-    Vec3 position;            ///< metres
-    Rgb intensity;            ///< radiant intensity (on the axis for a spot), W/sr per channel
+    Vec3 position; ///< metres
+    Rgb intensity; ///< radiant intensity (on the axis for a spot), W/sr per channel
     std::optional<SpotCone> spot;
 
     /// \brief Intensity toward the unit direction \p unit_dir (from the light) relative to
@@ -104,7 +104,7 @@ struct DiscontinuitySettings {
 };
 
 struct MesherSettings {
-    double max_edge_length = 0.0; ///< metres; 0 = scene diagonal / 20
+    double max_edge_length = 0.0;      ///< metres; 0 = scene diagonal / 20
     double planarity_tolerance = 1e-4; ///< relative to the polygon's size
     /// Split surfaces where others touch or cut them, close near-contacts and drop hidden parts.
     bool split_contacts = true;
@@ -118,22 +118,22 @@ struct SolverSettings {
     /// "hierarchical" (default), "shooting", "gathering" (= "gauss_seidel"), "jacobi",
     /// "gauss_seidel" or "matrix".
     std::string method = "hierarchical";
-    double residual = 1e-3;       ///< stop when unshot (or changing) power / emitted falls below
-    double epsilon = 1e-3;        ///< hierarchical: refine links whose estimate > ε × brightest exitance
+    double residual = 1e-3; ///< stop when unshot (or changing) power / emitted falls below
+    double epsilon = 1e-3; ///< hierarchical: refine links whose estimate > ε × brightest exitance
     /// hierarchical: "variation" (ΔF·B, the form factor's spread over the receiver times the
     /// source radiosity) or "bf" (F·B, Hanrahan et al. 1991).
     std::string oracle = "variation";
-    double min_area = 0;          ///< hierarchical: m², smallest element; 0 = (diagonal / 200)²
+    double min_area = 0; ///< hierarchical: m², smallest element; 0 = (diagonal / 200)²
     /// hierarchical: "auto" (clusters when the mesh has more than 3 000 elements), "on", "off".
     std::string clustering = "auto";
     /// hierarchical: how each solve between refinements iterates: "jacobi", "gauss_seidel"
     /// (by blocks of 32 roots) or "shooting" (progressive, Southwell, on the hierarchy).
     std::string iteration = "jacobi";
-    int max_sweeps = 500;         ///< gathering: most sweeps per solve
-    bool ambient = false;         ///< add the ambient term (previews only)
-    std::int64_t max_shots = 0;   ///< 0 = 10 000 × element count
-    int visibility_rays = 16;     ///< rays per element pair its probes do not show fully visible
-    double row_cache_mb = 2048;   ///< memory for cached form-factor rows
+    int max_sweeps = 500;       ///< gathering: most sweeps per solve
+    bool ambient = false;       ///< add the ambient term (previews only)
+    std::int64_t max_shots = 0; ///< 0 = 10 000 × element count
+    int visibility_rays = 16;   ///< rays per element pair its probes do not show fully visible
+    double row_cache_mb = 2048; ///< memory for cached form-factor rows
 };
 
 struct Scene {

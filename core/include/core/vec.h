@@ -9,8 +9,7 @@
 
 namespace penumbra {
 
-template <typename T>
-struct Vec3T {
+template <typename T> struct Vec3T {
     T x = 0, y = 0, z = 0;
 
     constexpr Vec3T() = default;
@@ -26,44 +25,57 @@ struct Vec3T {
     constexpr Vec3T operator-() const { return {-x, -y, -z}; }
     constexpr Vec3T operator*(T s) const { return {x * s, y * s, z * s}; }
     constexpr Vec3T operator/(T s) const { return {x / s, y / s, z / s}; }
-    constexpr Vec3T& operator+=(const Vec3T& o) { x += o.x; y += o.y; z += o.z; return *this; }
-    constexpr Vec3T& operator-=(const Vec3T& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-    constexpr Vec3T& operator*=(T s) { x *= s; y *= s; z *= s; return *this; }
+    constexpr Vec3T& operator+=(const Vec3T& o) {
+        x += o.x;
+        y += o.y;
+        z += o.z;
+        return *this;
+    }
+    constexpr Vec3T& operator-=(const Vec3T& o) {
+        x -= o.x;
+        y -= o.y;
+        z -= o.z;
+        return *this;
+    }
+    constexpr Vec3T& operator*=(T s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
     constexpr bool operator==(const Vec3T& o) const = default;
 };
 
-template <typename T>
-constexpr Vec3T<T> operator*(T s, const Vec3T<T>& v) { return v * s; }
+template <typename T> constexpr Vec3T<T> operator*(T s, const Vec3T<T>& v) {
+    return v * s;
+}
 
-template <typename T>
-constexpr T dot(const Vec3T<T>& a, const Vec3T<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+template <typename T> constexpr T dot(const Vec3T<T>& a, const Vec3T<T>& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 
-template <typename T>
-constexpr Vec3T<T> cross(const Vec3T<T>& a, const Vec3T<T>& b) {
+template <typename T> constexpr Vec3T<T> cross(const Vec3T<T>& a, const Vec3T<T>& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
-template <typename T>
-inline T length(const Vec3T<T>& v) { return std::sqrt(dot(v, v)); }
+template <typename T> inline T length(const Vec3T<T>& v) {
+    return std::sqrt(dot(v, v));
+}
 
-template <typename T>
-inline Vec3T<T> normalize(const Vec3T<T>& v) {
+template <typename T> inline Vec3T<T> normalize(const Vec3T<T>& v) {
     T len = length(v);
     return len > T(0) ? v / len : v;
 }
 
-template <typename T>
-inline bool is_finite(const Vec3T<T>& v) {
+template <typename T> inline bool is_finite(const Vec3T<T>& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-template <typename T>
-inline Vec3T<T> min(const Vec3T<T>& a, const Vec3T<T>& b) {
+template <typename T> inline Vec3T<T> min(const Vec3T<T>& a, const Vec3T<T>& b) {
     return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
 }
 
-template <typename T>
-inline Vec3T<T> max(const Vec3T<T>& a, const Vec3T<T>& b) {
+template <typename T> inline Vec3T<T> max(const Vec3T<T>& a, const Vec3T<T>& b) {
     return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
 
@@ -81,7 +93,10 @@ struct BBox {
     Vec3 hi{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
             -std::numeric_limits<double>::infinity()};
 
-    void extend(const Vec3& p) { lo = min(lo, p); hi = max(hi, p); }
+    void extend(const Vec3& p) {
+        lo = min(lo, p);
+        hi = max(hi, p);
+    }
     bool empty() const { return lo.x > hi.x; }
     double diagonal() const { return empty() ? 0.0 : length(hi - lo); }
 };

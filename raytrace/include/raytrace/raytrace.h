@@ -25,8 +25,7 @@ public:
 
     void occluded(std::span<const Segment> segments, std::span<std::uint8_t> out) const override;
     /// Names the front element of a two-sided surface.
-    void first_hit(std::span<const Segment> segments,
-                   std::span<std::int32_t> hit) const override;
+    void first_hit(std::span<const Segment> segments, std::span<std::int32_t> hit) const override;
     std::uint64_t rays_traced() const override;
 
     struct Hit {

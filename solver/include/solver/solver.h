@@ -30,13 +30,14 @@ struct PowerBalance {
 };
 
 struct SolveStats {
-    std::int64_t shots = 0;   ///< shots (shooting) or sweeps (gathering, hierarchical)
-    std::uint64_t links = 0;  ///< hierarchical: links at the end
+    std::int64_t shots = 0;  ///< shots (shooting) or sweeps (gathering, hierarchical)
+    std::uint64_t links = 0; ///< hierarchical: links at the end
     std::uint64_t rays = 0;
     double seconds_form_factors = 0;
     double seconds_total = 0;
     PowerBalance power;
-    std::vector<double> residual_history; ///< relative unshot power after every N shots (N = elements)
+    std::vector<double>
+        residual_history; ///< relative unshot power after every N shots (N = elements)
 };
 
 /// \brief Watches a solve: called with a snapshot every \p every_shots shots (shooting) or
@@ -75,9 +76,9 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
 ///        the refinement oracle and iterates from its radiosities.
 /// \throws ConfigError for an unknown method, a scene too large for "matrix", or a \p reuse
 ///         state of another geometry or with another method.
-SolveResult solve(const Scene& scene, const RadiosityMesh& mesh,
-                  const VisibilityQuery& visibility, const Context& ctx,
-                  SolveStats* stats = nullptr, const SolveObserver* observer = nullptr,
+SolveResult solve(const Scene& scene, const RadiosityMesh& mesh, const VisibilityQuery& visibility,
+                  const Context& ctx, SolveStats* stats = nullptr,
+                  const SolveObserver* observer = nullptr,
                   const HierarchicalState* reuse = nullptr);
 
 /// \brief Solves the radiosity of \p mesh by progressive shooting until the unshot power falls
@@ -94,7 +95,6 @@ using penumbra::SensorReading;
 ///        visibility rays.
 std::vector<SensorReading> evaluate_sensors(const Scene& scene, const RadiosityMesh& mesh,
                                             const Solution& solution,
-                                            const VisibilityQuery& visibility,
-                                            const Context& ctx);
+                                            const VisibilityQuery& visibility, const Context& ctx);
 
 } // namespace penumbra::solver

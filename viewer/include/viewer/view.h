@@ -19,15 +19,15 @@ struct ViewOptions {
     /// An output folder (its series.pvd if present, else its mesh.vtu), or a .vtu, .vtp or
     /// .pvd file.
     std::string input;
-    std::string png;      ///< when set, write this PNG off-screen instead of opening a window
-    int width = 0;        ///< pixels; 0 = the scene camera's image size (else 800 × 800)
+    std::string png; ///< when set, write this PNG off-screen instead of opening a window
+    int width = 0;   ///< pixels; 0 = the scene camera's image size (else 800 × 800)
     int height = 0;
-    std::string array;    ///< shown array; empty = true_colour if radiosity exists, else the first
+    std::string array; ///< shown array; empty = true_colour if radiosity exists, else the first
     bool log_scale = false;
-    bool edges = false;   ///< draw element edges
-    bool sensors = false; ///< draw the folder's sensors.vtp points
+    bool edges = false;           ///< draw element edges
+    bool sensors = false;         ///< draw the folder's sensors.vtp points
     bool discontinuities = false; ///< draw the folder's discontinuities.vtp lines
-    int step = -1;        ///< series step, counted from 0; -1 = the last (the final solution)
+    int step = -1; ///< series step, counted from 0; -1 = the last (the final solution)
     /// Events played one every 50 ms once the window shows (tests): a key ("a", "A", "Escape")
     /// or a left click "pick:X:Y" (pixels from the bottom left).
     std::vector<std::string> script;

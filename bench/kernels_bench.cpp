@@ -2,7 +2,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "form_factor.h"
+#include "kernels/form_factor.h"
 
 namespace {
 

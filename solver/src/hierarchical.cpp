@@ -11,8 +11,8 @@
 // disc approximation; front and back sides subdivide together so that leaves stay twins; a
 // link's irradiance is pushed to the leaves of its receiver, and its source's radiosity pulled
 // from the leaves of its source, by each leaf's own form factors to the link's far ends rather
-// than evenly (hr_weights.h), so that a closed box of uniform radiosity stays uniform and
-// power is not lost where radiosity varies over a coarse source.
+// than evenly (hierarchy/leaf_weights.h), so that a closed box of uniform radiosity stays uniform
+// and power is not lost where radiosity varies over a coarse source.
 
 #include "hierarchical.h"
 
@@ -22,16 +22,16 @@
 #include <numeric>
 #include <optional>
 
-#include "cluster_transport.h"
 #include "core/error.h"
 #include "core/parallel.h"
-#include "hierarchy.h"
-#include "hr_links.h"
-#include "hr_state.h"
-#include "hr_transport.h"
-#include "hr_weights.h"
-#include "leaf_mesh.h"
-#include "vertex_values.h"
+#include "hierarchy/hierarchy.h"
+#include "hierarchy/leaf_mesh.h"
+#include "hierarchy/leaf_weights.h"
+#include "iteration/cluster_transport.h"
+#include "iteration/transport.h"
+#include "links/link_set.h"
+#include "output/vertex_values.h"
+#include "state/solver_state.h"
 
 namespace penumbra::solver {
 

@@ -4,7 +4,7 @@
 #include "core/mesh.h"
 #include "core/scene.h"
 #include "core/visibility.h"
-#include "element_rows.h"
+#include "kernels/element_rows.h"
 #include "solver/solver.h"
 
 namespace penumbra::solver {

@@ -6,9 +6,9 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
-#include "fixed_system.h"
 #include "hierarchical.h"
-#include "point_lights.h"
+#include "progressive/fixed_system.h"
+#include "sources/point_lights.h"
 
 namespace penumbra::solver {
 

@@ -1,4 +1,4 @@
-// Issue #4: clustering for hierarchical radiosity (solver/src/cluster_tree.h): light
+// Issue #4: clustering for hierarchical radiosity (solver/src/hierarchy/cluster_tree.h): light
 // exchanged through cluster links keeps the closed-box furnace and agrees with the unclustered
 // solve. Reference values: shared/validation/README.md §furnace.
 
@@ -8,16 +8,16 @@
 #include <gtest/gtest.h>
 
 #include "app/pipeline.h"
-#include "cluster_tree.h"
 #include "common/bake_util.h"
 #include "common/test_util.h"
-#include "hierarchy.h"
-#include "hr_links.h"
+#include "hierarchy/cluster_tree.h"
+#include "hierarchy/hierarchy.h"
+#include "links/link_set.h"
 #include "mesher/mesher.h"
 #include "office_scene.h"
-#include "point_gather.h"
+#include "output/point_gather.h"
+#include "output/vertex_values.h"
 #include "raytrace/raytrace.h"
-#include "vertex_values.h"
 
 namespace penumbra {
 namespace {

@@ -1,4 +1,4 @@
-// Issue #4: exact links between face clusters (solver/src/hr_exact_links.cpp): their form
+// Issue #4: exact links between face clusters (solver/src/links/exact_links.cpp): their form
 // factor against the analytic rectangle values (shared/validation/README.md §1), the plane
 // their receiver takes against the point form factors, the radiosity their source sends
 // against a gather from its roots, and the sloped push that spreads their light.
@@ -8,12 +8,12 @@
 
 #include <gtest/gtest.h>
 
-#include "cluster_transport.h"
-#include "cluster_tree.h"
 #include "common/test_util.h"
-#include "form_factor.h"
-#include "hierarchy.h"
-#include "hr_links.h"
+#include "hierarchy/cluster_tree.h"
+#include "hierarchy/hierarchy.h"
+#include "iteration/cluster_transport.h"
+#include "kernels/form_factor.h"
+#include "links/link_set.h"
 #include "mesher/mesher.h"
 #include "office_scene.h"
 #include "raytrace/raytrace.h"

@@ -125,7 +125,7 @@ TEST_P(HierarchicalFurnace, UniformEmissionAndReflectance) {
 // refinement, leaves next to edges and corners inherit links whose form factors their
 // ancestors average over (each far surface is seen flatter from there): spread evenly, the
 // form factors such a leaf gathered summed to up to 1.5 and B was 9 % (ε = 1e-2) and 2.4 %
-// (ε = 1e-3) off; the leaf weights (hr_weights.h) spread them by the leaf's own.
+// (ε = 1e-3) off; the leaf weights (hierarchy/leaf_weights.h) spread them by the leaf's own.
 INSTANTIATE_TEST_SUITE_P(Epsilon, HierarchicalFurnace, ::testing::Values(1.0, 1e-2, 1e-3));
 
 // §3, CIE 171 5.6: a uniformly lit 4 × 4 m reflector (ρ = 0.3); the illuminance it causes at

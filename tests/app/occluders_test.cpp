@@ -1,7 +1,7 @@
-// Issue #4: occlusion certificates for links (solver/src/occluders.h). A plane may prove a pair
-// of boxes on its two sides mutually invisible only if every segment between them is blocked;
-// checked against Embree on random segments, between random boxes in the offices of a floor
-// whose partitions have doors, cabinets standing against them (coplanar faces overlapping the
+// Issue #4: occlusion certificates for links (solver/src/visibility/occluders.h). A plane may prove
+// a pair of boxes on its two sides mutually invisible only if every segment between them is
+// blocked; checked against Embree on random segments, between random boxes in the offices of a
+// floor whose partitions have doors, cabinets standing against them (coplanar faces overlapping the
 // partition) and tessellations that meet at T-vertices, as generated and turned to general
 // planes.
 
@@ -16,11 +16,11 @@
 
 #include "common/test_util.h"
 #include "core/visibility.h"
-#include "hierarchy.h"
+#include "hierarchy/hierarchy.h"
 #include "mesher/mesher.h"
-#include "occluders.h"
 #include "office_scene.h"
 #include "raytrace/raytrace.h"
+#include "visibility/occluders.h"
 
 namespace penumbra {
 namespace {

@@ -1,6 +1,6 @@
 // Analytic kernels against closed forms (shared/validation/README.md §1).
 
-#include "form_factor.h"
+#include "kernels/form_factor.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include "core/rng.h"
 #include "core/visibility.h"
-#include "element_rows.h"
+#include "kernels/element_rows.h"
 
 namespace penumbra::solver {
 namespace {

@@ -1,7 +1,7 @@
-// The growable array the solver keeps its links in (solver/src/mapped_array.h): its elements
+// The growable array the solver keeps its links in (solver/src/links/mapped_array.h): its elements
 // survive growth by remapping, resizing, assignment and moves.
 
-#include "mapped_array.h"
+#include "links/mapped_array.h"
 
 #include <cstdint>
 #include <vector>

@@ -1,0 +1,103 @@
+#pragma once
+// Light transport over a fixed set of hierarchical links, and the iterations that solve it:
+// Jacobi sweeps, Gauss–Seidel sweeps by blocks of roots, and progressive shooting
+// (Southwell) on the hierarchy (issue #4). Every sweep gathers over the links, grouped by
+// receiver, then pushes irradiance down and pulls radiosity up each root's tree (Hanrahan et
+// al. 1991); shooting sends each root tree's unshot radiosity through the links it is the
+// source of, and lets receivers collect it lazily.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/mesh.h"
+#include "hierarchy/cluster_tree.h"
+#include "hierarchy/hierarchy.h"
+#include "hierarchy/leaf_weights.h"
+#include "iteration/cluster_transport.h"
+#include "links/link_set.h"
+#include "solver/solver.h"
+
+namespace penumbra::solver {
+
+/// How the radiosities of one set of links are solved (SolverSettings::iteration).
+enum class Iteration { jacobi, gauss_seidel, shooting };
+
+/// \brief The iteration named \p name ("jacobi", "gauss_seidel", "shooting"); throws
+///        ConfigError otherwise.
+Iteration parse_iteration(const std::string& name);
+
+struct NodeValues {
+    std::vector<Rgb> b, gathered_direct, gathered_indirect, h_direct, h_indirect;
+    std::vector<float> b_lo, b_hi; ///< range of the leaves' radiosity (largest channel)
+    std::vector<float> b_range;    ///< b_hi − b_lo
+    /// Irradiance gathered through element links alone: what the leaf weights spread.
+    std::vector<Rgb> link_direct, link_indirect;
+    /// Irradiance of light links and cluster links to element receivers, spread evenly.
+    std::vector<Rgb> extra_direct, extra_indirect;
+    /// What each node sends through its element links: its leaves' radiosities by their emit
+    /// weights (the leaf's own radiosity for a leaf).
+    std::vector<Rgb> b_emit;
+    LeafWeights weights;
+};
+
+/// Frees what only the sweeps use, keeping b, h_direct, h_indirect and the weights.
+void release_sweep_values(NodeValues& v);
+
+/// The cluster tree and its values, when clustering.
+struct Clusters {
+    ClusterTree tree;
+    ClusterValues values;
+    bool enabled = false;
+};
+
+/// Where sweeps and shots are reported: the residual history and the observer's snapshots
+/// (on the roots, i.e. the input mesh's elements).
+struct SweepLog {
+    const RadiosityMesh& mesh;
+    const SolveObserver* observer;
+    SolveStats* stats;
+    std::int64_t total = 0; ///< sweeps, or shots when shooting
+};
+
+struct Solved {
+    int sweeps = 0;         ///< sweeps (shooting: shots)
+    double relative = 1;    ///< last change (shooting: unshot power) over the emitted power
+    bool limit_hit = false; ///< stopped by solver.max_sweeps or max_shots, not the residual
+};
+
+/// NodeValues::b_emit afresh from the leaves' radiosities, once the weights have changed.
+void pull_emit(const Hierarchy& h, NodeValues& v);
+
+/// \brief Solves the radiosities of the current links with \p iteration until the relative
+///        change (or unshot power) falls below settings.residual. \p emitted: W, the largest
+///        channel of the emitted power.
+Solved solve_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
+                   const SolverSettings& settings, Iteration iteration, double emitted,
+                   SweepLog& log);
+
+// Building blocks, shared by the iterations (iteration/transport.cpp,
+// iteration/hierarchical_shooting.cpp).
+
+/// One Jacobi sweep over every link and tree; returns Σ A |ΔB| over the leaves / emitted.
+double sweep_jacobi(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
+                    double emitted);
+/// Progressive shooting on the hierarchy (iteration/hierarchical_shooting.cpp): one Jacobi sweep
+/// for the direct light, then Southwell shots of the change, then a last sweep.
+Solved shoot_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
+                   const SolverSettings& settings, double emitted, SweepLog& log);
+/// The nodes of every root's tree, depth first, parents before children (CSR by root).
+struct TreeNodes {
+    std::vector<std::uint32_t> start, nodes;
+};
+TreeNodes tree_nodes(const Hierarchy& h);
+/// Counts a sweep or shot in \p log, adds \p relative to the residual history if \p history,
+/// and hands the observer a snapshot when one is due.
+void record_pass(const Hierarchy& h, const NodeValues& v, SweepLog& log, double relative,
+                 bool history);
+/// Recomputes the inner nodes' radiosities, ranges and b_emit from the leaves.
+void pull_all(const Hierarchy& h, NodeValues& v);
+/// The roots' radiosities and irradiances as a solution on the input mesh.
+Solution root_snapshot(const RadiosityMesh& mesh, const Hierarchy& h, const NodeValues& v);
+
+} // namespace penumbra::solver

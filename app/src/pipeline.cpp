@@ -1,11 +1,12 @@
 #include "app/pipeline.h"
 
+#include "outputs.h"
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 
 #include "core/error.h"
-#include "core/files.h"
 #include "mesher/mesher.h"
 #include "raytrace/raytrace.h"
 #include "viewer/view.h"
@@ -29,11 +30,6 @@ private:
     std::string stage_;
     std::chrono::steady_clock::time_point start_;
 };
-
-bool same_folder(const std::string& a, const std::string& b) {
-    std::error_code ec;
-    return !a.empty() && std::filesystem::equivalent(a, b, ec);
-}
 
 } // namespace
 
@@ -93,37 +89,18 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
 
 void write_outputs(const std::string& dir, const Scene& scene, const BakeResult& result,
                    bool save_state) {
-    namespace fs = std::filesystem;
     std::error_code ec;
-    fs::create_directories(dir, ec);
+    std::filesystem::create_directories(dir, ec);
     if (ec)
         throw ConfigError(fmt::format("cannot create output folder '{}': {}", dir, ec.message()));
-    auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
-    viewer::write_vtu(path("mesh.vtu"), scene, result.mesh, result.solution);
+    const OutputTarget target{scene, result, dir, save_state};
     // Files of an earlier bake that this one does not write would mix two bakes in the viewer.
-    if (!result.mesh.discontinuities.empty())
-        viewer::write_discontinuities_vtp(path("discontinuities.vtp"), result.mesh);
-    else
-        fs::remove(path("discontinuities.vtp"), ec);
-    if (!scene.sensors.empty())
-        viewer::write_sensors_vtp(path("sensors.vtp"), scene, result.sensors);
-    else
-        fs::remove(path("sensors.vtp"), ec);
-    if (result.series_steps == 0 || !same_folder(result.series_dir, dir))
-        viewer::remove_series(dir);
-    if (result.render) {
-        write_exr(path("render.exr"), *result.render);
-        double exposure =
-            scene.camera->exposure > 0 ? scene.camera->exposure : auto_exposure(*result.render);
-        write_png(path("render.png"), *result.render, exposure);
+    for (const OutputWriter& writer : bake_writers()) {
+        if (writer.wanted(target))
+            writer.write(target);
+        else
+            remove_output(writer, target);
     }
-    if (!scene.sensors.empty())
-        write_text_file(path("sensors.csv"), sensors_csv(scene, result));
-    if (result.solver_state && save_state)
-        solver::write_hierarchical_state(*result.solver_state, path(k_solver_state_file));
-    else
-        fs::remove(path(k_solver_state_file), ec);
-    write_text_file(path("summary.json"), summary_json(scene, result));
 }
 
 void view(const ViewRequest& request, const Context& ctx) {

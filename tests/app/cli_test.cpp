@@ -247,5 +247,32 @@ TEST_F(CliBadInput, ReuseOfAMissingOrWrongState) {
     EXPECT_NE(r.err.find("--reuse"), std::string::npos) << r.err;
 }
 
+// Every output names its files (app/src/outputs.h): a bake into the folder of an earlier one
+// leaves none of the earlier bake's files that it does not write itself.
+TEST(CliOutputs, RebakeRemovesTheEarlierBakesOtherFiles) {
+    const fs::path dir = test::temp_dir("cli-rebake");
+    write(dir / "full.json", good_scene(R"(,
+  "sensors": [[0.5, 0.5, 0, 0, 0, 1]],
+  "camera": {"eye": [0.5, -1.5, 0.6], "look_at": [0.5, 0.5, 0.3], "up": [0, 0, 1], "fov_deg": 50},
+  "image": {"width": 16, "height": 12, "spp": 1})"));
+    write(dir / "bare.json", good_scene());
+    const fs::path out = dir / "out";
+    RunResult r =
+        run_cli("bake " + (dir / "full.json").string() + " -o " + out.string() + " --series 2 -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* f : {"render.exr", "render.png", "sensors.csv", "sensors.vtp", "series.pvd",
+                          "solver_state.bin"})
+        ASSERT_TRUE(fs::exists(out / f)) << f;
+    write(out / "notes.txt", "a user's file");
+    r = run_cli("bake " + (dir / "bare.json").string() + " -o " + out.string() + " --no-state -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* f : {"render.exr", "render.png", "sensors.csv", "sensors.vtp", "series.pvd",
+                          "series", "solver_state.bin"})
+        EXPECT_FALSE(fs::exists(out / f)) << f << " of the earlier bake was left";
+    for (const char* f : {"mesh.vtu", "summary.json", "notes.txt"})
+        EXPECT_TRUE(fs::exists(out / f)) << f;
+    fs::remove_all(dir);
+}
+
 } // namespace
 } // namespace penumbra

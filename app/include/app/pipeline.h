@@ -52,11 +52,11 @@ struct BakeOptions {
 /// \brief Runs mesher, solver, sensors and renderer on \p scene.
 BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& ctx);
 
-/// \brief Writes mesh.vtu, render.exr/png, sensors.csv, sensors.vtp, discontinuities.vtp (when
-///        the mesh has any), solver_state.bin (hierarchical, when \p save_state) and
-///        summary.json into \p dir (each file atomically). Removes a
-///        sensors.vtp, discontinuities.vtp or series (series.pvd, series/) that an earlier bake
-///        left in \p dir and this one did not write. Throws ExternalError/ConfigError.
+/// \brief Writes the bake's outputs into \p dir through the list of writers of
+///        app/src/outputs.cpp (mesh.vtu, discontinuities.vtp, sensors.vtp, render.exr/png,
+///        sensors.csv, solver_state.bin when \p save_state, summary.json; each file
+///        atomically), and removes those of an earlier bake in \p dir that this one does not
+///        write (a series included). Throws ExternalError/ConfigError.
 void write_outputs(const std::string& dir, const Scene& scene, const BakeResult& result,
                    bool save_state = true);
 

@@ -212,7 +212,7 @@ Row run_size(std::int64_t target, const Options& options, const Context& ctx) {
     if (options.epsilon > 0)
         scene.solver.epsilon = options.epsilon;
     if (!options.clustering.empty())
-        scene.solver.clustering = options.clustering;
+        scene.solver.clustering = *parse_enum<Clustering>(options.clustering);
     if (options.min_area > 0)
         scene.solver.min_area = options.min_area;
     validate_scene(scene);
@@ -334,7 +334,8 @@ int main(int argc, char** argv) {
     cli.add_option("--epsilon", o.epsilon, "solver.epsilon (default: the scene's, 1e-3)")
         ->check(CLI::PositiveNumber);
     cli.add_option("--clustering", o.clustering, "solver.clustering (default: the scene's, auto)")
-        ->check(CLI::IsMember({"auto", "on", "off"}));
+        ->check(CLI::IsMember({"auto", "on", "off"}))
+        ->check(CLI::IsMember(penumbra::enum_names<penumbra::Clustering>()));
     cli.add_option(
         "--offices", o.offices,
         "NXxNY offices (e.g. 2x1) instead of the size's; the size then only names the row");

@@ -81,21 +81,21 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
     if (flags.residual > 0)
         scene.solver.residual = flags.residual;
     if (!flags.method.empty())
-        scene.solver.method = flags.method;
+        scene.solver.method = *parse_enum<SolverMethod>(flags.method);
     if (flags.epsilon > 0)
         scene.solver.epsilon = flags.epsilon;
     if (flags.min_area_m2 > 0)
         scene.solver.min_area = flags.min_area_m2;
     if (!flags.clustering.empty())
-        scene.solver.clustering = flags.clustering;
+        scene.solver.clustering = *parse_enum<Clustering>(flags.clustering);
     if (!flags.iteration.empty())
-        scene.solver.iteration = flags.iteration;
+        scene.solver.iteration = *parse_enum<SolverIteration>(flags.iteration);
     check_output_dir(flags.output);
     std::shared_ptr<const solver::HierarchicalState> previous;
     if (!flags.reuse.empty()) {
-        if (scene.solver.method != "hierarchical")
+        if (scene.solver.method != SolverMethod::hierarchical)
             throw ConfigError(fmt::format("--reuse needs the hierarchical method, not '{}'",
-                                          scene.solver.method));
+                                          enum_name(scene.solver.method)));
         namespace fs = std::filesystem;
         const fs::path given(flags.reuse);
         previous = solver::read_hierarchical_state(
@@ -160,8 +160,7 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1e-12, 0.999999));
     bake_cmd->add_flag("--no-render", bake.no_render, "skip the camera render");
     bake_cmd->add_option("--method", bake.method, "solver method (overrides solver.method)")
-        ->check(CLI::IsMember(
-            {"hierarchical", "shooting", "gathering", "jacobi", "gauss_seidel", "matrix"}));
+        ->check(CLI::IsMember(enum_names<SolverMethod>()));
     bake_cmd
         ->add_option("--epsilon", bake.epsilon,
                      "hierarchical: refinement threshold, relative to the brightest source's "
@@ -176,13 +175,13 @@ int main(int argc, char** argv) {
                      "hierarchical: start from a cluster tree (on), from all pairs of mesh "
                      "elements (off), or cluster above 3 000 elements (auto; overrides "
                      "solver.clustering)")
-        ->check(CLI::IsMember({"auto", "on", "off"}));
+        ->check(CLI::IsMember(enum_names<Clustering>()));
     bake_cmd
         ->add_option("--iteration", bake.iteration,
                      "hierarchical: how each solve between refinements iterates: jacobi, "
                      "gauss_seidel (blocks of 32 roots) or shooting (progressive, on the "
                      "hierarchy; overrides solver.iteration)")
-        ->check(CLI::IsMember({"jacobi", "gauss_seidel", "shooting"}));
+        ->check(CLI::IsMember(enum_names<SolverIteration>()));
     bake_cmd->add_option("--reuse", bake.reuse,
                          "hierarchical: re-solve from an earlier bake's folder (or its "
                          "solver_state.bin): same geometry, new reflectances or emissions; keeps "

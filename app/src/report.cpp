@@ -43,7 +43,7 @@ std::string summary_json(const Scene& scene, const BakeResult& result) {
     j["patches"] = result.mesh.patches.size();
     j["input_polygons"] = scene.polygons.size();
     j["rays_traced"] = result.rays;
-    j["solver"] = {{"method", scene.solver.method},
+    j["solver"] = {{"method", enum_name(scene.solver.method)},
                    {"shots_or_sweeps", result.stats.shots},
                    {"links", result.stats.links},
                    {"epsilon", scene.solver.epsilon},

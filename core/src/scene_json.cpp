@@ -459,43 +459,28 @@ double number_in(const Field& field, double lo, double hi, const char* range) {
     return v;
 }
 
+/// The value of a settings enum spelled by \p field (its name table, core/enum_names.h).
+template <class E> E enum_value(const Field& field, const char* what) {
+    const std::string name = field.string();
+    const std::optional<E> value = parse_enum<E>(name);
+    if (!value)
+        field.fail(fmt::format("unknown {} '{}' (known: {})", what, name, enum_name_list<E>()));
+    return *value;
+}
+
 SolverSettings parse_solver(const Field& field, double metres_per_unit) {
     field.expect_keys({"method", "oracle", "clustering", "iteration", "residual", "epsilon",
                        "min_area", "max_sweeps", "ambient", "max_shots", "visibility_rays",
                        "row_cache_mb"});
     SolverSettings solver;
-    if (field.has("method")) {
-        const Field method = field.child("method");
-        solver.method = method.string();
-        const char* known[] = {"hierarchical", "shooting",     "gathering",
-                               "jacobi",       "gauss_seidel", "matrix"};
-        if (std::find(std::begin(known), std::end(known), solver.method) == std::end(known))
-            method.fail(fmt::format("unknown method '{}' (known: hierarchical, shooting, "
-                                    "gathering, jacobi, gauss_seidel, matrix)",
-                                    solver.method));
-    }
-    if (field.has("oracle")) {
-        const Field oracle = field.child("oracle");
-        solver.oracle = oracle.string();
-        if (solver.oracle != "variation" && solver.oracle != "bf")
-            oracle.fail(fmt::format("unknown oracle '{}' (known: variation, bf)", solver.oracle));
-    }
-    if (field.has("clustering")) {
-        const Field clustering = field.child("clustering");
-        solver.clustering = clustering.string();
-        if (solver.clustering != "auto" && solver.clustering != "on" && solver.clustering != "off")
-            clustering.fail(
-                fmt::format("unknown clustering '{}' (known: auto, on, off)", solver.clustering));
-    }
-    if (field.has("iteration")) {
-        const Field iteration = field.child("iteration");
-        solver.iteration = iteration.string();
-        if (solver.iteration != "jacobi" && solver.iteration != "gauss_seidel" &&
-            solver.iteration != "shooting")
-            iteration.fail(
-                fmt::format("unknown iteration '{}' (known: jacobi, gauss_seidel, shooting)",
-                            solver.iteration));
-    }
+    if (field.has("method"))
+        solver.method = enum_value<SolverMethod>(field.child("method"), "method");
+    if (field.has("oracle"))
+        solver.oracle = enum_value<RefinementOracle>(field.child("oracle"), "oracle");
+    if (field.has("clustering"))
+        solver.clustering = enum_value<Clustering>(field.child("clustering"), "clustering");
+    if (field.has("iteration"))
+        solver.iteration = enum_value<SolverIteration>(field.child("iteration"), "iteration");
     if (field.has("residual"))
         solver.residual = number_in(field.child("residual"), 1e-12, 0.5, "[1e-12, 0.5]");
     if (field.has("epsilon"))

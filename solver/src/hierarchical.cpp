@@ -233,7 +233,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     Hierarchy h = reuse ? reused_hierarchy(mesh, *reuse) : Hierarchy(mesh);
     std::vector<std::int32_t> twin = reuse ? reuse->twin : mesh.element_twin;
     RefineSettings rs;
-    rs.oracle = scene.solver.oracle == "bf" ? Oracle::bf : Oracle::variation;
+    rs.oracle = scene.solver.oracle;
     rs.rows.visibility_rays = scene.solver.visibility_rays;
     rs.rows.seed = ctx.seed;
     rs.rows.apart_quadrature_level = k_apart_level;
@@ -247,10 +247,10 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     v.b_range.assign(h.size(), 0.0f);
     ProgressStage progress(ctx, "hierarchical");
     Clusters clusters;
-    clusters.enabled =
-        reuse ? reuse->clustered
-              : scene.solver.clustering == "on" ||
-                    (scene.solver.clustering == "auto" && h.root_count > k_clustering_auto_roots);
+    clusters.enabled = reuse ? reuse->clustered
+                             : scene.solver.clustering == Clustering::on ||
+                                   (scene.solver.clustering == Clustering::automatic &&
+                                    h.root_count > k_clustering_auto_roots);
     if (clusters.enabled) {
         clusters.tree = build_cluster_tree(h);
         init_cluster_values(clusters.tree, h, v.b, clusters.values);
@@ -274,7 +274,7 @@ SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
     if (clusters.enabled)
         links.set_cluster_threshold(scene.solver.epsilon * emitted / clusters.tree.area[0]);
     SweepLog log{mesh, observer, stats};
-    const Iteration iteration = parse_iteration(scene.solver.iteration);
+    const Iteration iteration = scene.solver.iteration;
     if (reuse && !reuse->weights.empty()) { // of the same links: geometry only
         v.weights = reuse->weights;
         pull_emit(h, v);

@@ -17,16 +17,17 @@ namespace {
 SolveResult solve_fixed(const Scene& scene, const RadiosityMesh& mesh,
                         const VisibilityQuery& visibility, const Context& ctx, SolveStats* stats,
                         const SolveObserver* observer) {
-    const std::string& method = scene.solver.method;
+    const SolverMethod method = scene.solver.method;
     return run_in_arena(ctx, [&] {
         ElementGeometry geo(mesh);
         RowSettings rows;
         rows.visibility_rays = scene.solver.visibility_rays;
         rows.seed = ctx.seed;
         FixedSystem system = build_fixed_system(scene, mesh, geo, visibility, rows, ctx);
-        ElementResult er = method == "matrix" ? solve_matrix(system, geo, ctx, stats)
-                                              : solve_gathering(system, geo, scene.solver,
-                                                                method != "jacobi", ctx, stats);
+        ElementResult er = method == SolverMethod::matrix
+                               ? solve_matrix(system, geo, ctx, stats)
+                               : solve_gathering(system, geo, scene.solver,
+                                                 method != SolverMethod::jacobi, ctx, stats);
         SolveResult result;
         result.solution = make_solution(scene, mesh, geo, std::move(er), visibility, rows, ctx);
         if (observer && observer->on_pass)
@@ -76,26 +77,27 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
 SolveResult solve(const Scene& scene, const RadiosityMesh& mesh, const VisibilityQuery& visibility,
                   const Context& ctx, SolveStats* stats, const SolveObserver* observer,
                   const HierarchicalState* reuse) {
-    const std::string& method = scene.solver.method;
-    if (method == "hierarchical")
+    switch (scene.solver.method) {
+    case SolverMethod::hierarchical:
         return run_in_arena(ctx, [&] {
             return solve_hierarchical(scene, mesh, visibility, ctx, stats, observer, reuse);
         });
+    case SolverMethod::shooting:
+    case SolverMethod::jacobi:
+    case SolverMethod::gauss_seidel:
+    case SolverMethod::matrix:
+        break;
+    }
     if (reuse)
         throw ConfigError(fmt::format("a saved solver state is reused by the hierarchical "
                                       "method only, not '{}'",
-                                      method));
-    if (method == "shooting") {
+                                      enum_name(scene.solver.method)));
+    if (scene.solver.method == SolverMethod::shooting) {
         SolveResult result;
         result.solution = solve_shooting(scene, mesh, visibility, ctx, stats, observer);
         return result;
     }
-    if (method == "gathering" || method == "jacobi" || method == "gauss_seidel" ||
-        method == "matrix")
-        return solve_fixed(scene, mesh, visibility, ctx, stats, observer);
-    throw ConfigError(fmt::format("unknown solver method '{}' (known: hierarchical, shooting, "
-                                  "gathering, jacobi, gauss_seidel, matrix)",
-                                  method));
+    return solve_fixed(scene, mesh, visibility, ctx, stats, observer);
 }
 
 } // namespace penumbra::solver

@@ -45,7 +45,7 @@ void add_lamp_room(Scene& scene, const Vec3& o) {
 Scene lamp_room(const std::string& clustering, double eps) {
     Scene scene;
     scene.solver.epsilon = eps;
-    scene.solver.clustering = clustering;
+    scene.solver.clustering = *parse_enum<Clustering>(clustering);
     scene.solver.residual = 1e-5;
     add_lamp_room(scene, {0, 0, 0});
     scene.mesher.max_edge_length = 0.4;
@@ -242,7 +242,7 @@ TEST(Clustering, LinksGrowAboutLinearlyOnOfficeFloors) {
     for (int k = 0; k < 2; ++k) {
         Scene scene = bench::office_floor(bench::office_params_for_triangles(targets[k]));
         bench::mesh_input_as_is(scene);
-        scene.solver.clustering = "on";
+        scene.solver.clustering = Clustering::on;
         scene.solver.epsilon = 3e-2;
         scene.sensors.clear();
         triangles[k] = bench::input_triangle_count(scene);
@@ -258,7 +258,7 @@ TEST(Clustering, LinksGrowAboutLinearlyOnOfficeFloors) {
 // An open hall, 16 × 8 × 3 m, lit by a 4 × 2 grid of ceiling panels, with a row of boxes.
 Scene panel_hall() {
     Scene scene;
-    scene.solver.clustering = "on";
+    scene.solver.clustering = Clustering::on;
     scene.solver.epsilon = 3e-2;
     auto wall = add_material(scene, "wall", Rgb(0.5f));
     auto panel = add_material(scene, "panel", Rgb(0.0f), Rgb(60.0f), false);

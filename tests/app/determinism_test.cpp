@@ -20,7 +20,8 @@ TEST(Determinism, CornellBoxIdenticalFor1And2And4Threads) {
     Scene scene = load_scene(test::source_path("data/cornell/scene.json"));
     scene.mesher.max_edge_length = 0.1;
     scene.solver.residual = 1e-2;
-    scene.solver.method = "shooting"; // the hierarchical solver has its own (hierarchical_test)
+    scene.solver.method =
+        SolverMethod::shooting; // the hierarchical solver has its own (hierarchical_test)
     scene.camera->width = 48;
     scene.camera->height = 48;
     scene.camera->samples_per_pixel = 4;

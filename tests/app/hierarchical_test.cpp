@@ -32,11 +32,11 @@ double relative_l1(const app::BakeResult& r, const app::BakeResult& ref) {
 TEST(FixedElementMethods, ShootingJacobiGaussSeidelAndMatrixAgree) {
     Scene scene = cornell(0.15);
     scene.solver.residual = 1e-8;
-    scene.solver.method = "matrix";
+    scene.solver.method = SolverMethod::matrix;
     const app::BakeResult reference = bake(scene);
     ASSERT_GT(reference.mesh.element_count(), 300u);
     for (const char* method : {"shooting", "jacobi", "gauss_seidel"}) {
-        scene.solver.method = method;
+        scene.solver.method = *parse_enum<SolverMethod>(method);
         const app::BakeResult r = bake(scene);
         ASSERT_EQ(r.mesh.element_count(), reference.mesh.element_count());
         EXPECT_LT(relative_l1(r, reference), 1e-4) << method;
@@ -74,7 +74,7 @@ double hierarchical_error(const app::BakeResult& hr, const app::BakeResult& ref)
 
 TEST(Hierarchical, ErrorAgainstMatrixSolveFallsAsEpsilonShrinks) {
     Scene fine = cornell(0.06);
-    fine.solver.method = "matrix";
+    fine.solver.method = SolverMethod::matrix;
     const app::BakeResult reference = bake(fine);
     double previous = 1e30;
     for (double eps : {1e-2, 3e-3, 1e-3}) {

@@ -26,8 +26,8 @@ using test::relative_l1;
 
 // The hierarchical solver with \p iteration.
 app::BakeResult bake(Scene scene, const char* iteration, int threads = 0) {
-    scene.solver.method = "hierarchical";
-    scene.solver.iteration = iteration;
+    scene.solver.method = SolverMethod::hierarchical;
+    scene.solver.iteration = *parse_enum<SolverIteration>(iteration);
     return test::bake(scene, threads);
 }
 
@@ -40,7 +40,7 @@ Scene cornell(double max_edge) {
 Scene cornell_roots(double residual) {
     Scene scene = cornell(0.15);
     scene.solver.epsilon = 1.0;
-    scene.solver.clustering = "off";
+    scene.solver.clustering = Clustering::off;
     scene.solver.residual = residual;
     return scene;
 }
@@ -72,7 +72,7 @@ TEST(HierarchicalIterations, AgreeOnTheSameLinks) {
 TEST(HierarchicalIterations, AgreeWithRefinementAndClusters) {
     Scene scene = cornell(0.1);
     scene.solver.epsilon = 1e-2;
-    scene.solver.clustering = "on";
+    scene.solver.clustering = Clustering::on;
     scene.solver.residual = 1e-6;
     auto root_means = [](const app::BakeResult& r) {
         std::vector<double> area(r.mesh.element_count());
@@ -135,7 +135,7 @@ INSTANTIATE_TEST_SUITE_P(Iterations, IterationFurnace,
 TEST(HierarchicalIterations, IdenticalFor1And2And4Threads) {
     Scene scene = cornell(0.2);
     scene.solver.epsilon = 1e-2;
-    scene.solver.clustering = "on";
+    scene.solver.clustering = Clustering::on;
     for (const char* iteration : {"gauss_seidel", "shooting"}) {
         std::vector<app::BakeResult> results;
         for (int threads : {1, 2, 4})
@@ -166,7 +166,7 @@ TEST(HierarchicalIterations, GaussSeidelNeedsFewerSweeps) {
 // holds the direct light (error < 50 %).
 TEST(HierarchicalIterations, ShootingShowsAnEarlyImage) {
     Scene scene = cornell_roots(1e-6); // the roots are the elements the snapshots are on
-    scene.solver.iteration = "shooting";
+    scene.solver.iteration = SolverIteration::shooting;
     const Context ctx = test::quiet_context(0);
     const RadiosityMesh mesh = mesher::build_mesh(scene, ctx);
     raytrace::EmbreeScene rt(mesh);

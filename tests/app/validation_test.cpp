@@ -23,7 +23,7 @@ using test::add_rect;
 // has its own in hierarchical_test.cpp, and runs CIE 171 5.8 here too.
 app::BakeResult bake_no_render(Scene scene, int threads = 0,
                                const std::string& method = "shooting") {
-    scene.solver.method = method;
+    scene.solver.method = *parse_enum<SolverMethod>(method);
     return test::bake(scene, threads);
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/enum_names.h"
 #include "core/rgb.h"
 #include "core/vec.h"
 
@@ -114,24 +115,80 @@ struct MesherSettings {
     DiscontinuitySettings discontinuity;
 };
 
+/// \brief Radiosity methods (SolverSettings::method).
+enum class SolverMethod {
+    hierarchical, ///< hierarchical radiosity with clustering (Hanrahan et al. 1991)
+    shooting,     ///< progressive refinement on fixed elements (Cohen et al. 1988)
+    jacobi,       ///< Jacobi gathering on fixed elements
+    gauss_seidel, ///< Gauss–Seidel gathering on fixed elements
+    matrix,       ///< a dense direct solve on fixed elements (small scenes)
+};
+inline constexpr EnumName<SolverMethod> k_solver_method_names[] = {
+    {"hierarchical", SolverMethod::hierarchical},
+    {"shooting", SolverMethod::shooting},
+    {"jacobi", SolverMethod::jacobi},
+    {"gauss_seidel", SolverMethod::gauss_seidel},
+    {"gathering", SolverMethod::gauss_seidel},
+    {"matrix", SolverMethod::matrix},
+};
+template <>
+inline constexpr std::span<const EnumName<SolverMethod>> k_enum_names<SolverMethod> =
+    k_solver_method_names;
+
+/// \brief The hierarchical solver's refinement oracle (SolverSettings::oracle).
+enum class RefinementOracle {
+    variation, ///< ΔF·B: the form factor's spread over the receiver times the source radiosity
+    bf,        ///< F·B (Hanrahan et al. 1991)
+};
+inline constexpr EnumName<RefinementOracle> k_refinement_oracle_names[] = {
+    {"variation", RefinementOracle::variation},
+    {"bf", RefinementOracle::bf},
+};
+template <>
+inline constexpr std::span<const EnumName<RefinementOracle>> k_enum_names<RefinementOracle> =
+    k_refinement_oracle_names;
+
+/// \brief Whether the hierarchical solver starts from a cluster tree (SolverSettings::clustering).
+enum class Clustering {
+    automatic, ///< "auto": clusters when the mesh has more than 3 000 elements
+    on,
+    off,
+};
+inline constexpr EnumName<Clustering> k_clustering_names[] = {
+    {"auto", Clustering::automatic},
+    {"on", Clustering::on},
+    {"off", Clustering::off},
+};
+template <>
+inline constexpr std::span<const EnumName<Clustering>> k_enum_names<Clustering> =
+    k_clustering_names;
+
+/// \brief How each hierarchical solve between refinements iterates (SolverSettings::iteration).
+enum class SolverIteration {
+    jacobi,       ///< Jacobi sweeps
+    gauss_seidel, ///< Gauss–Seidel sweeps by blocks of 32 roots
+    shooting,     ///< progressive shooting (Southwell) on the hierarchy
+};
+inline constexpr EnumName<SolverIteration> k_solver_iteration_names[] = {
+    {"jacobi", SolverIteration::jacobi},
+    {"gauss_seidel", SolverIteration::gauss_seidel},
+    {"shooting", SolverIteration::shooting},
+};
+template <>
+inline constexpr std::span<const EnumName<SolverIteration>> k_enum_names<SolverIteration> =
+    k_solver_iteration_names;
+
 struct SolverSettings {
-    /// "hierarchical" (default), "shooting", "gathering" (= "gauss_seidel"), "jacobi",
-    /// "gauss_seidel" or "matrix".
-    std::string method = "hierarchical";
+    SolverMethod method = SolverMethod::hierarchical;
     double residual = 1e-3; ///< stop when unshot (or changing) power / emitted falls below
     double epsilon = 1e-3; ///< hierarchical: refine links whose estimate > ε × brightest exitance
-    /// hierarchical: "variation" (ΔF·B, the form factor's spread over the receiver times the
-    /// source radiosity) or "bf" (F·B, Hanrahan et al. 1991).
-    std::string oracle = "variation";
+    RefinementOracle oracle = RefinementOracle::variation; ///< hierarchical
     double min_area = 0; ///< hierarchical: m², smallest element; 0 = (diagonal / 200)²
-    /// hierarchical: "auto" (clusters when the mesh has more than 3 000 elements), "on", "off".
-    std::string clustering = "auto";
-    /// hierarchical: how each solve between refinements iterates: "jacobi", "gauss_seidel"
-    /// (by blocks of 32 roots) or "shooting" (progressive, Southwell, on the hierarchy).
-    std::string iteration = "jacobi";
-    int max_sweeps = 500;       ///< gathering: most sweeps per solve
-    bool ambient = false;       ///< add the ambient term (previews only)
-    std::int64_t max_shots = 0; ///< 0 = 10 000 × element count
+    Clustering clustering = Clustering::automatic;       ///< hierarchical
+    SolverIteration iteration = SolverIteration::jacobi; ///< hierarchical
+    int max_sweeps = 500;                                ///< gathering: most sweeps per solve
+    bool ambient = false;                                ///< add the ambient term (previews only)
+    std::int64_t max_shots = 0;                          ///< 0 = 10 000 × element count
     int visibility_rays = 16;   ///< rays per element pair its probes do not show fully visible
     double row_cache_mb = 2048; ///< memory for cached form-factor rows
 };

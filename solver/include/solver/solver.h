@@ -70,11 +70,10 @@ void write_hierarchical_state(const HierarchicalState& state, const std::string&
 /// \throws InputError naming \p path if it is missing, truncated or not a state file.
 std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::string& path);
 
-/// \brief Solves with the method of scene.solver.method ("hierarchical", "shooting",
-///        "gathering", "jacobi", "gauss_seidel", "matrix"). Hierarchical: with \p reuse, keeps
+/// \brief Solves with scene.solver.method (SolverMethod). Hierarchical: with \p reuse, keeps
 ///        its hierarchy and links, takes reflectances and emissions from \p scene, re-runs
 ///        the refinement oracle and iterates from its radiosities.
-/// \throws ConfigError for an unknown method, a scene too large for "matrix", or a \p reuse
+/// \throws ConfigError for a scene too large for SolverMethod::matrix, or a \p reuse
 ///         state of another geometry or with another method.
 SolveResult solve(const Scene& scene, const RadiosityMesh& mesh, const VisibilityQuery& visibility,
                   const Context& ctx, SolveStats* stats = nullptr,

@@ -225,17 +225,6 @@ void record_pass(const Hierarchy& h, const NodeValues& v, SweepLog& log, double 
         o->on_pass(root_snapshot(log.mesh, h, v), log.total, relative, false);
 }
 
-Iteration parse_iteration(const std::string& name) {
-    if (name == "jacobi")
-        return Iteration::jacobi;
-    if (name == "gauss_seidel")
-        return Iteration::gauss_seidel;
-    if (name == "shooting")
-        return Iteration::shooting;
-    throw ConfigError(fmt::format(
-        "unknown hierarchical iteration '{}' (known: jacobi, gauss_seidel, shooting)", name));
-}
-
 void pull_emit(const Hierarchy& h, NodeValues& v) {
     v.b_emit.assign(h.size(), Rgb{});
     parallel_for_index(h.root_count, 16, [&](std::size_t r) {

@@ -21,11 +21,7 @@
 namespace penumbra::solver {
 
 /// How the radiosities of one set of links are solved (SolverSettings::iteration).
-enum class Iteration { jacobi, gauss_seidel, shooting };
-
-/// \brief The iteration named \p name ("jacobi", "gauss_seidel", "shooting"); throws
-///        ConfigError otherwise.
-Iteration parse_iteration(const std::string& name);
+using Iteration = SolverIteration;
 
 struct NodeValues {
     std::vector<Rgb> b, gathered_direct, gathered_indirect, h_direct, h_indirect;

@@ -108,7 +108,7 @@ constexpr int k_max_link_rays = (1 << 13) - 1;
 /// the variation of the form factor over the receiver times the source radiosity (the error
 /// of giving the whole receiver one value) plus the form factor times the range of radiosity
 /// over the source's leaves (the error of treating the source as uniform).
-enum class Oracle { bf, variation };
+using Oracle = RefinementOracle;
 
 struct RefineSettings {
     Oracle oracle = Oracle::variation;

@@ -14,6 +14,7 @@
 #include <cctype>
 #include <filesystem>
 #include <iterator>
+#include <type_traits>
 #include <unordered_map>
 
 namespace penumbra::bench {
@@ -118,7 +119,11 @@ Json xyz(const Vec3& v) {
 
 /// Sets j[key] = value unless value is the default.
 template <typename T> void put_changed(Json& j, const char* key, const T& value, const T& dflt) {
-    if (value != dflt)
+    if (value == dflt)
+        return;
+    if constexpr (std::is_enum_v<T>)
+        j[key] = std::string(enum_name(value)); // as the scene file spells it
+    else
         j[key] = value;
 }
 
@@ -142,11 +147,12 @@ Json mesher_json(const MesherSettings& m) {
 Json solver_json(const SolverSettings& s) {
     const SolverSettings d;
     Json j = Json::object();
-    j["method"] = s.method;
+    j["method"] = std::string(enum_name(s.method));
     put_changed(j, "residual", s.residual, d.residual);
     put_changed(j, "epsilon", s.epsilon, d.epsilon);
     put_changed(j, "oracle", s.oracle, d.oracle);
     put_changed(j, "clustering", s.clustering, d.clustering);
+    put_changed(j, "iteration", s.iteration, d.iteration);
     put_changed(j, "min_area", s.min_area, d.min_area);
     put_changed(j, "max_sweeps", s.max_sweeps, d.max_sweeps);
     put_changed(j, "ambient", s.ambient, d.ambient);

@@ -54,94 +54,128 @@ struct LeafDirect {
     std::vector<Rgb> far; ///< per leaf element, W/m²
 };
 
+// The direct light that cluster links bring, per node and pushed down to each root.
 // Overwrites \p clusters' gathered and pushed values (the solve is done with them): a copy
 // took 0.3 GB on the 1M floor, at the solve's peak.
-LeafDirect leaf_direct(const Hierarchy& h, const LinkStore& links, Clusters& clusters,
-                       const std::vector<Rgb>& b, const std::vector<std::uint32_t>& leaf_node) {
-    const std::vector<std::uint32_t> root_of = h.root_of_nodes();
-    std::vector<Rgb> cluster_direct(h.size()), unused(h.size());
-    std::vector<Rgb> root_direct;
+struct ClusterDirect {
+    std::vector<Rgb> node, root;
+};
+
+ClusterDirect cluster_direct(const Hierarchy& h, const LinkStore& links, Clusters& clusters,
+                             const std::vector<Rgb>& b) {
+    ClusterDirect out;
+    out.node.resize(h.size());
+    std::vector<Rgb> unused(h.size());
     if (clusters.enabled) { // the direct part alone
         ClusterValues& cv = clusters.values;
-        gather_cluster_links(h, *clusters.tables, links, b, cv, cluster_direct, unused, false,
-                             false);
+        gather_cluster_links(h, *clusters.tables, links, b, cv, out.node, unused, false, false);
         push_clusters(clusters.tree, h, cv);
-        root_direct = std::move(cv.root_direct);
+        out.root = std::move(cv.root_direct);
     }
-    unused = {};
-    LeafDirect out;
-    out.far.resize(leaf_node.size());
-    const auto& offsets = links.receiver_offsets();
-    // Exact links from emitters (left out of the direct light above) reach a leaf through
-    // its element ancestors and the face clusters above its root: per cluster, whether any
-    // such link ends there, and each root's leaf cluster.
-    const auto& cl = links.cluster_links();
-    const auto& by_element = links.cluster_offsets_elements();
-    const auto& by_cluster = links.cluster_offsets_clusters();
-    auto exact_emitter = [&](const ClusterLink& l) {
-        return l.exact && clusters.tables->emits(l.source);
-    };
-    std::vector<std::uint8_t> lit_exactly;
-    std::vector<std::int32_t> root_cluster;
-    if (clusters.enabled) {
+    return out;
+}
+
+// The emitting roots a leaf's vertices gather exactly: those that element links reach it or
+// its ancestors from, and the emitters of exact links (left out of the direct light of the
+// cluster links), which reach a leaf through its element ancestors and the face clusters
+// above its root.
+class LeafEmitters {
+public:
+    LeafEmitters(const Hierarchy& h, const LinkStore& links, const Clusters& clusters)
+        : h_(h), links_(links), clusters_(clusters), root_of_(h.root_of_nodes()) {
+        if (!clusters.enabled)
+            return;
+        // Per cluster, whether any exact link from an emitter ends there, and each root's
+        // leaf cluster.
         const ClusterTree& tree = clusters.tree;
-        lit_exactly.assign(tree.size(), 0);
-        root_cluster.assign(h.root_count, -1);
+        const auto& cl = links.cluster_links();
+        const auto& by_cluster = links.cluster_offsets_clusters();
+        lit_exactly_.assign(tree.size(), 0);
+        root_cluster_.assign(h.root_count, -1);
         parallel_for_index(tree.size(), 256, [&](std::size_t c) {
-            for (std::uint32_t k = by_cluster[c]; k < by_cluster[c + 1] && !lit_exactly[c]; ++k)
-                lit_exactly[c] = exact_emitter(cl[k]);
+            for (std::uint32_t k = by_cluster[c]; k < by_cluster[c + 1] && !lit_exactly_[c]; ++k)
+                lit_exactly_[c] = exact_emitter(cl[k]);
             for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k)
                 if (!is_cluster(tree.children[k]))
-                    root_cluster[tree.children[k]] = std::int32_t(c);
+                    root_cluster_[tree.children[k]] = std::int32_t(c);
         });
     }
-    auto add_exact_emitters = [&](std::uint32_t first, std::uint32_t end,
-                                  std::vector<std::uint32_t>& near) {
+
+    const std::vector<std::uint32_t>& root_of() const { return root_of_; }
+
+    /// A leaf's emitting roots, sorted and unique, into \p near.
+    void of(std::uint32_t leaf, std::vector<std::uint32_t>& near) const {
+        const auto& offsets = links_.receiver_offsets();
+        const auto& by_element = links_.cluster_offsets_elements();
+        const auto& by_cluster = links_.cluster_offsets_clusters();
+        near.clear();
+        for (std::int32_t a = std::int32_t(leaf); a >= 0; a = h_.parent[std::size_t(a)]) {
+            for (std::uint32_t k = offsets[std::size_t(a)]; k < offsets[std::size_t(a) + 1]; ++k) {
+                const std::uint32_t source = links_.links()[k].source;
+                if (!h_.emission[source].is_black())
+                    near.push_back(root_of_[source]);
+            }
+            if (clusters_.enabled)
+                add_exact_emitters(by_element[std::size_t(a)], by_element[std::size_t(a) + 1],
+                                   near);
+        }
+        if (clusters_.enabled)
+            for (std::int32_t c = root_cluster_[root_of_[leaf]];
+                 c >= 0 && clusters_.tree.planar[std::size_t(c)];
+                 c = clusters_.tree.parent[std::size_t(c)])
+                if (lit_exactly_[std::size_t(c)])
+                    add_exact_emitters(by_cluster[std::size_t(c)], by_cluster[std::size_t(c) + 1],
+                                       near);
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+    }
+
+private:
+    bool exact_emitter(const ClusterLink& l) const {
+        return l.exact && clusters_.tables->emits(l.source);
+    }
+
+    void add_exact_emitters(std::uint32_t first, std::uint32_t end,
+                            std::vector<std::uint32_t>& near) const {
+        const auto& cl = links_.cluster_links();
         for (std::uint32_t k = first; k < end; ++k) {
             if (!exact_emitter(cl[k]))
                 continue;
             const NodeRef p = cl[k].source;
             if (!is_cluster(p)) {
-                near.push_back(root_of[p]);
+                near.push_back(root_of_[p]);
                 continue;
             }
-            const auto roots = clusters.tables->cluster_roots(cluster_index(p));
+            const auto roots = clusters_.tables->cluster_roots(cluster_index(p));
             near.insert(near.end(), roots.begin(), roots.end());
         }
-    };
-    // A leaf's emitting roots, sorted and unique, into \p near.
-    auto emitters_of = [&](std::uint32_t leaf, std::vector<std::uint32_t>& near) {
-        near.clear();
-        for (std::int32_t a = std::int32_t(leaf); a >= 0; a = h.parent[std::size_t(a)]) {
-            for (std::uint32_t k = offsets[std::size_t(a)]; k < offsets[std::size_t(a) + 1]; ++k) {
-                const std::uint32_t source = links.links()[k].source;
-                if (!h.emission[source].is_black())
-                    near.push_back(root_of[source]);
-            }
-            if (clusters.enabled)
-                add_exact_emitters(by_element[std::size_t(a)], by_element[std::size_t(a) + 1],
-                                   near);
-        }
-        if (clusters.enabled)
-            for (std::int32_t c = root_cluster[root_of[leaf]];
-                 c >= 0 && clusters.tree.planar[std::size_t(c)];
-                 c = clusters.tree.parent[std::size_t(c)])
-                if (lit_exactly[std::size_t(c)])
-                    add_exact_emitters(by_cluster[std::size_t(c)], by_cluster[std::size_t(c) + 1],
-                                       near);
-        std::sort(near.begin(), near.end());
-        near.erase(std::unique(near.begin(), near.end()), near.end());
-    };
+    }
+
+    const Hierarchy& h_;
+    const LinkStore& links_;
+    const Clusters& clusters_;
+    const std::vector<std::uint32_t> root_of_;
+    std::vector<std::uint8_t> lit_exactly_;
+    std::vector<std::int32_t> root_cluster_;
+};
+
+LeafDirect leaf_direct(const Hierarchy& h, const LinkStore& links, Clusters& clusters,
+                       const std::vector<Rgb>& b, const std::vector<std::uint32_t>& leaf_node) {
+    const ClusterDirect direct = cluster_direct(h, links, clusters, b);
+    const LeafEmitters emitters(h, links, clusters);
+    const std::vector<std::uint32_t>& root_of = emitters.root_of();
+    LeafDirect out;
+    out.far.resize(leaf_node.size());
     // Counted, then written (CSR: a vector per leaf took 4 times the memory).
     std::vector<std::uint32_t>& first = out.near.first;
     first.assign(leaf_node.size() + 1, 0);
     parallel_for_index(leaf_node.size(), 256, [&](std::size_t e) {
         thread_local std::vector<std::uint32_t> near;
-        emitters_of(leaf_node[e], near);
+        emitters.of(leaf_node[e], near);
         first[e + 1] = std::uint32_t(near.size());
-        Rgb far = clusters.enabled ? root_direct[root_of[leaf_node[e]]] : Rgb{};
+        Rgb far = clusters.enabled ? direct.root[root_of[leaf_node[e]]] : Rgb{};
         for (std::int32_t a = std::int32_t(leaf_node[e]); a >= 0; a = h.parent[std::size_t(a)])
-            far += cluster_direct[std::size_t(a)];
+            far += direct.node[std::size_t(a)];
         out.far[e] = far;
     });
     for (std::size_t e = 0; e < leaf_node.size(); ++e)
@@ -149,7 +183,7 @@ LeafDirect leaf_direct(const Hierarchy& h, const LinkStore& links, Clusters& clu
     out.near.roots.resize(first.back());
     parallel_for_index(leaf_node.size(), 256, [&](std::size_t e) {
         thread_local std::vector<std::uint32_t> near;
-        emitters_of(leaf_node[e], near);
+        emitters.of(leaf_node[e], near);
         std::copy(near.begin(), near.end(), out.near.roots.begin() + first[e]);
     });
     return out;

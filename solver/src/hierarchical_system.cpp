@@ -153,6 +153,30 @@ const char* pass_name(Iteration iteration) {
     return iteration == Iteration::shooting ? "shots" : "sweeps";
 }
 
+// Seconds a cycle took to refine, weigh the leaves and solve.
+struct CycleTimes {
+    double refine = 0, weights = 0, solve = 0;
+};
+
+// Logs a cycle's solve: its times, a sweep limit hit, its nodes and links.
+void report_cycle(const Context& ctx, const HierarchicalSystem& sys, int cycle, const Solved& s,
+                  double residual, const CycleTimes& t) {
+    const char* passes = pass_name(sys.iteration);
+    ctx.debug("hierarchical: cycle {}: refine {:.2f} s, leaf weights {:.2f} s, {} {:.2f} s", cycle,
+              t.refine, t.weights, passes, t.solve);
+    if (s.limit_hit)
+        ctx.warn("hierarchical: cycle {} stopped at {} {} (solver.{}) with a change of "
+                 "{:.3g} of the emitted power, above its residual {:.3g}",
+                 cycle, s.sweeps, passes,
+                 sys.iteration == Iteration::shooting ? "max_shots" : "max_sweeps", s.relative,
+                 residual);
+    ctx.info("hierarchical: cycle {}: {} nodes, {} links ({} element, {} cluster, {} "
+             "light), {} {}, change {:.2e}",
+             cycle, sys.h.size(), sys.links.link_count(), sys.links.links().size(),
+             sys.links.cluster_links().size(), sys.links.light_links().size(), s.sweeps, passes,
+             s.relative);
+}
+
 // One refine → solve cycle; returns true if it was the last.
 bool run_cycle(HierarchicalSystem& sys, LinkSet& refiner, const Scene& scene, const Context& ctx,
                ProgressStage& progress, SweepLog& log, int cycle) {
@@ -202,20 +226,7 @@ bool run_cycle(HierarchicalSystem& sys, LinkSet& refiner, const Scene& scene, co
         sweeps.residual *= k_intermediate_residual;
     const Solved s =
         solve_links(h, sys.links, v, sys.clusters, sweeps, sys.iteration, sys.emitted, log);
-    const char* passes = pass_name(sys.iteration);
-    ctx.debug("hierarchical: cycle {}: refine {:.2f} s, leaf weights {:.2f} s, {} {:.2f} s", cycle,
-              refine_s, weights_s, passes, seconds_since(t0));
-    if (s.limit_hit)
-        ctx.warn("hierarchical: cycle {} stopped at {} {} (solver.{}) with a change of "
-                 "{:.3g} of the emitted power, above its residual {:.3g}",
-                 cycle, s.sweeps, passes,
-                 sys.iteration == Iteration::shooting ? "max_shots" : "max_sweeps", s.relative,
-                 sweeps.residual);
-    ctx.info("hierarchical: cycle {}: {} nodes, {} links ({} element, {} cluster, {} "
-             "light), {} {}, change {:.2e}",
-             cycle, h.size(), sys.links.link_count(), sys.links.links().size(),
-             sys.links.cluster_links().size(), sys.links.light_links().size(), s.sweeps, passes,
-             s.relative);
+    report_cycle(ctx, sys, cycle, s, sweeps.residual, {refine_s, weights_s, seconds_since(t0)});
     progress.update(cycle_start + cycle_share);
     return last;
 }

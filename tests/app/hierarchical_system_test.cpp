@@ -81,13 +81,13 @@ TEST_P(HierarchicalSystemSources, SolvesAreLinearAndRepeatable) {
     EXPECT_EQ(system->links.link_count(), links); // no refinement
     EXPECT_EQ(system->h.size(), nodes);
 
-    // Each solve stops once a sweep changes Σ A B by less than the residual of the emitted
-    // power; the three solutions are each within a few residuals of their fixed points
-    // (the geometric tail of the sweeps, ρ ≤ 0.75 here).
+    // Each solve stops once a sweep changes the radiosities by less than the residual of
+    // the emitted power, so the sum of two solutions is the solution of the sum within the
+    // residual (measured: 7e-8 without clusters, 2.5e-7 with, at a residual of 1e-6).
     const double error = linearity_error(system->h, first.b, second.b, sum.b);
     std::printf("clustering %s: %zu nodes, %zu links, linearity error %.2e\n", GetParam().c_str(),
                 nodes, links, error);
-    EXPECT_LT(error, 20 * settings.residual);
+    EXPECT_LT(error, settings.residual);
     EXPECT_GT(linearity_error(system->h, first.b, first.b, sum.b), 0.1); // the test sees
     EXPECT_TRUE(same_bits(first.b, again.b));
     EXPECT_TRUE(same_bits(first.h_direct, again.h_direct));

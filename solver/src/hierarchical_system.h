@@ -21,7 +21,9 @@
 namespace penumbra::solver {
 
 /// \brief The hierarchy, links, leaf weights and clusters of a built system, and the node
-///        values of its last solve. Its links refer to its hierarchy: it does not move.
+///        values of its last solve. Its cluster tables refer to its hierarchy and clusters:
+///        it does not move. solve_hierarchical's output stage takes it apart (its tables are
+///        freed, its links and hierarchy move into the saved state).
 struct HierarchicalSystem {
     /// The roots of \p mesh (or \p reuse's saved hierarchy, with the scene's materials) and
     /// no links yet.

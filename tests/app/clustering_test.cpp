@@ -157,7 +157,7 @@ TEST(Clustering, LevelsHoldEveryClusterBelowItsParent) {
 }
 
 // The links stay grouped by receiver and ordered by source (the in-place flag sort of
-// LinkSet::sort_and_index), with receiver_offsets() bounding each group, after linking the
+// LinkStore::sort_and_index), with receiver_offsets() bounding each group, after linking the
 // roots and after a refinement that splits many of them.
 TEST(Clustering, LinksAreSortedByReceiverThenSource) {
     Scene scene = lamp_room("off", 1e-2);
@@ -169,10 +169,11 @@ TEST(Clustering, LinksAreSortedByReceiverThenSource) {
     settings.rows.visibility_rays = 4;
     settings.offset = 1e-5 * mesh.scene_diagonal;
     settings.min_area = 1e-3;
-    solver::LinkSet links(h, twin, embree, scene.point_lights, nullptr, settings);
+    solver::LinkStore store;
+    solver::LinkSet links(h, twin, store, nullptr, embree, scene.point_lights, nullptr, settings);
     auto check = [&](const char* when) {
-        const auto& all = links.links();
-        const auto& offsets = links.receiver_offsets();
+        const auto& all = store.links();
+        const auto& offsets = store.receiver_offsets();
         ASSERT_EQ(offsets.size(), h.size() + 1) << when;
         ASSERT_EQ(offsets.back(), all.size()) << when;
         for (std::size_t n = 0; n < h.size(); ++n)
@@ -184,13 +185,13 @@ TEST(Clustering, LinksAreSortedByReceiverThenSource) {
             }
     };
     links.link_roots();
-    const std::size_t linked = links.links().size();
+    const std::size_t linked = store.links().size();
     check("linked");
     std::vector<Rgb> b = h.emission;
     std::vector<float> b_range(h.size(), 0.0f);
     links.set_threshold(1e-4 * 50.0);
     ASSERT_TRUE(links.refine(b, b_range));
-    EXPECT_GT(links.links().size(), linked + linked / 20); // measured 956 k -> 1.03 M
+    EXPECT_GT(store.links().size(), linked + linked / 20); // measured 956 k -> 1.03 M
     check("refined");
 }
 

@@ -44,6 +44,8 @@ struct Pair {
     solver::ClusterValues cv;
     std::vector<std::int32_t> twin;
     std::unique_ptr<raytrace::EmbreeScene> embree;
+    solver::LinkStore store;
+    std::unique_ptr<solver::ClusterTables> tables;
     std::unique_ptr<solver::LinkSet> links;
     NodeRef a = 0, b = 0; ///< the face clusters of the first and the second rectangle
 
@@ -63,9 +65,10 @@ struct Pair {
         settings.rows.visibility_rays = 16;
         settings.offset = 1e-5 * mesh.scene_diagonal;
         settings.min_area = min_area;
-        links = std::make_unique<solver::LinkSet>(*h, twin, *embree, scene.point_lights, nullptr,
-                                                  settings);
-        links->attach_clusters(tree, cv.exitance, cv.exitance_emitted, cv.peak, cv.departure);
+        tables = std::make_unique<solver::ClusterTables>(
+            *h, twin, tree, cv.exitance, cv.exitance_emitted, cv.peak, cv.departure);
+        links = std::make_unique<solver::LinkSet>(*h, twin, store, tables.get(), *embree,
+                                                  scene.point_lights, nullptr, settings);
         a = face_cluster(cross(ua, va));
         b = face_cluster(cross(ub, vb));
     }
@@ -145,7 +148,7 @@ TEST(ExactLinks, FormFactorMatchesAnalyticRectangles) {
         EXPECT_NEAR(link.g, c.expected, 5e-3 * c.expected) << c.width << " x 1 at " << c.gap;
         EXPECT_FLOAT_EQ(link.visible(), 1.0f);
         const double radius = 0.5 * std::hypot(c.width, 1.0);
-        EXPECT_LT(length(pair.links->exact_slope(link)) * radius, 1e-3 * link.g);
+        EXPECT_LT(length(pair.tables->exact_slope(link)) * radius, 1e-3 * link.g);
     }
     // A floor and the wall standing on its edge, whose point form factor is steepest where
     // they meet.
@@ -201,7 +204,7 @@ TEST(ExactLinks, ReceiverPlaneFollowsThePointFormFactors) {
     const ClusterLink link = pair.links->exact_link(pair.a, pair.b);
     ASSERT_TRUE(link.exact);
     ASSERT_FALSE(link.unresolved());
-    const Vec3 slope = pair.links->exact_slope(link);
+    const Vec3 slope = pair.tables->exact_slope(link);
     EXPECT_GT(slope.x, 0.0); // brighter toward the wall
     const Vec3 m = pair.tree.centroid[solver::cluster_index(pair.a)];
     double plane_error = 0, mean_error = 0, weighted = 0, area = 0;
@@ -232,8 +235,8 @@ TEST(ExactLinks, SourceSendsTheRadiosityItsReceiverSees) {
     const ClusterLink link = pair.links->exact_link(pair.a, pair.b);
     ASSERT_TRUE(link.exact);
     const Rgb source_mean =
-        pair.links->face_mean(solver::cluster_index(link.source), pair.cv.exitance);
-    const double sent = pair.links->exact_source_radiosity(link, source_mean, pair.cv.gradient).g;
+        pair.tables->face_mean(solver::cluster_index(link.source), pair.cv.exitance);
+    const double sent = pair.tables->exact_source_radiosity(link, source_mean, pair.cv.gradient).g;
     double area = 0, mean = 0;
     for (std::uint32_t r : pair.roots(pair.b)) {
         mean += b[r].g * pair.h->area[r];
@@ -278,8 +281,8 @@ TEST(ExactLinks, PairLinkedBothWaysIsMadeAsItsTwoLinks) {
         EXPECT_NEAR(l.d.y, s.d.y, 0.01);
         EXPECT_EQ(l.v_bits, s.v_bits);
         EXPECT_EQ(l.rays, s.rays);
-        const Rgb mean = pair.links->face_mean(solver::cluster_index(l.source), pair.cv.exitance);
-        const double sent = pair.links->exact_source_radiosity(l, mean, pair.cv.gradient).g;
+        const Rgb mean = pair.tables->face_mean(solver::cluster_index(l.source), pair.cv.exitance);
+        const double sent = pair.tables->exact_source_radiosity(l, mean, pair.cv.gradient).g;
         const double truth = pair.gathered(l.receiver, l.source, b);
         std::printf("pair: %s sends %.5f, gather %.5f\n", k == 0 ? "wall" : "floor", sent, truth);
         EXPECT_NEAR(sent, truth, 0.01 * truth);
@@ -331,26 +334,25 @@ TEST(ExactLinks, FaceClustersWithinTheMinimumAreaAreNotSplit) {
         std::vector<Rgb> b(pair.h->size(), Rgb(1.0f));
         std::vector<float> b_range(pair.h->size(), 0.0f);
         solver::init_cluster_values(pair.tree, *pair.h, b, pair.cv);
-        pair.links->link_clusters(pair.tree, pair.cv.exitance, pair.cv.exitance_emitted,
-                                  pair.cv.peak, pair.cv.departure);
+        pair.links->link_clusters();
         pair.links->set_threshold(1e-9);
         pair.links->set_cluster_threshold(1e-9);
         pair.links->refine(b, b_range);
         std::size_t between_clusters = 0, to_roots = 0;
-        for (const ClusterLink& l : pair.links->cluster_links()) {
+        for (const ClusterLink& l : pair.store.cluster_links()) {
             between_clusters += l.exact && ((l.receiver == pair.a && l.source == pair.b) ||
                                             (l.receiver == pair.b && l.source == pair.a));
             to_roots += !solver::is_cluster(l.receiver);
         }
-        to_roots += pair.links->links().size();
+        to_roots += pair.store.links().size();
         std::printf("min area %g m²: %zu links, %zu of them to roots\n", min_area,
-                    pair.links->link_count(), to_roots);
+                    pair.store.link_count(), to_roots);
         if (min_area > 1.0) {
             EXPECT_EQ(between_clusters, 2u);
-            EXPECT_EQ(pair.links->link_count(), 2u);
+            EXPECT_EQ(pair.store.link_count(), 2u);
         } else {
             EXPECT_EQ(between_clusters, 0u);
-            EXPECT_EQ(to_roots, pair.links->link_count()); // a root's mean F is all it takes
+            EXPECT_EQ(to_roots, pair.store.link_count()); // a root's mean F is all it takes
             EXPECT_GE(to_roots, 64u);
         }
     }

@@ -92,7 +92,7 @@ struct ClusterTree {
     std::vector<std::uint32_t> child_begin;
     std::vector<NodeRef> children;
     /// The cluster's roots are of one planar group (one oriented plane, connected): a face
-    /// cluster, which may exchange light through exact links (links/link_set.h) like an element.
+    /// cluster, which may exchange light through exact links (links/link_store.h) like an element.
     std::vector<std::uint8_t> planar;
     std::vector<Vec3> normal; ///< of a planar cluster's plane (zero for the others)
     ClusterLevels levels;     ///< for the passes over the tree (for_each_cluster_by_level)

@@ -21,7 +21,7 @@ std::uint64_t link_word(std::uint32_t far_end, float ff, bool partial) {
 }
 
 // A hash of each node's links as receiver and as source (far end, form factor, occlusion).
-std::vector<std::uint64_t> link_signatures(const Hierarchy& h, const LinkSet& links,
+std::vector<std::uint64_t> link_signatures(const Hierarchy& h, const LinkStore& links,
                                            const LinksBySource& by_source) {
     const std::span<const Link> all = links.links();
     const std::vector<std::uint32_t>& by_receiver = links.receiver_offsets();
@@ -80,7 +80,7 @@ struct RawWeight {
 
 // Leaf x's unscaled weights for its ancestor a (1 where a has no links of that kind). A partly
 // occluded link keeps its even spread: its visibility from x is not known without rays.
-RawWeight raw_weight(const Hierarchy& h, const LinkSet& links, const LinksBySource& by_source,
+RawWeight raw_weight(const Hierarchy& h, const LinkStore& links, const LinksBySource& by_source,
                      const Ends& ends, std::uint32_t x, std::uint32_t a) {
     const std::span<const Link> all = links.links();
     const std::vector<std::uint32_t>& by_receiver = links.receiver_offsets();
@@ -163,7 +163,7 @@ LinksBySource index_by_source(const Hierarchy& h, std::span<const Link> links,
     return s;
 }
 
-LeafWeights leaf_weights(const Hierarchy& h, const LinkSet& links, const LeafWeights& previous) {
+LeafWeights leaf_weights(const Hierarchy& h, const LinkStore& links, const LeafWeights& previous) {
     // Weights are per leaf and ancestor: only inner nodes' links are read (a big scene's
     // leaves send most links, and an index of all of them is 4 bytes a link).
     const LinksBySource by_source = index_by_source(h, links.links(), true);

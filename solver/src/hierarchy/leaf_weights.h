@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "hierarchy/hierarchy.h"
-#include "links/link_set.h"
+#include "links/link_store.h"
 
 namespace penumbra::solver {
 
@@ -61,6 +61,6 @@ LinksBySource index_by_source(const Hierarchy& h, std::span<const Link> links,
 ///        element links seen from the leaf's centroid (analytic point form factors, no rays).
 ///        Entries whose leaf and whose ancestor's links are as in \p previous (the last
 ///        cycle's weights, or none) are taken from it. Parallel over leaves, deterministic.
-LeafWeights leaf_weights(const Hierarchy& h, const LinkSet& links, const LeafWeights& previous);
+LeafWeights leaf_weights(const Hierarchy& h, const LinkStore& links, const LeafWeights& previous);
 
 } // namespace penumbra::solver

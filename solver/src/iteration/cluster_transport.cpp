@@ -20,7 +20,8 @@ struct FaceMeans {
     std::vector<std::uint8_t> emits;
 };
 
-FaceMeans face_means(const ClusterTree& tree, const LinkSet& links, const ClusterValues& cv) {
+FaceMeans face_means(const ClusterTree& tree, const ClusterTables& tables,
+                     const ClusterValues& cv) {
     FaceMeans m;
     m.total.resize(tree.size());
     m.emitted.resize(tree.size());
@@ -29,15 +30,15 @@ FaceMeans face_means(const ClusterTree& tree, const LinkSet& links, const Cluste
         if (!tree.planar[c])
             return;
         const auto i = std::uint32_t(c);
-        m.total[c] = links.face_mean(i, cv.exitance);
-        m.emitted[c] = links.face_mean(i, cv.exitance_emitted);
-        m.emits[c] = links.emits(cluster_ref(i)) ? 1 : 0;
+        m.total[c] = tables.face_mean(i, cv.exitance);
+        m.emitted[c] = tables.face_mean(i, cv.exitance_emitted);
+        m.emits[c] = tables.emits(cluster_ref(i)) ? 1 : 0;
     });
     return m;
 }
 
 // \p increment and \p exact_emitted: as gather_cluster_links.
-SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterValues& cv,
+SourceTerm source_term(const Hierarchy& h, const ClusterTables& tables, const ClusterValues& cv,
                        const FaceMeans& means, const std::vector<Rgb>& b, const ClusterLink& link,
                        bool increment, bool exact_emitted) {
     const float scale = link.g * link.visible();
@@ -53,9 +54,9 @@ SourceTerm source_term(const Hierarchy& h, const LinkSet& links, const ClusterVa
             // Most sources emit nothing: their emitted part is not worked out.
             if (means.emits[c])
                 s.emitted =
-                    links.exact_source_radiosity(link, means.emitted[c], cv.gradient_emitted) *
+                    tables.exact_source_radiosity(link, means.emitted[c], cv.gradient_emitted) *
                     scale;
-            s.total = links.exact_source_radiosity(link, means.total[c], cv.gradient) * scale;
+            s.total = tables.exact_source_radiosity(link, means.total[c], cv.gradient) * scale;
         }
         if (!exact_emitted) {
             s.total = s.total - s.emitted;
@@ -88,21 +89,22 @@ void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std:
     cv.root_indirect.assign(h.root_count, Rgb{});
 }
 
-void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const LinkSet& links,
+void gather_cluster_links(const Hierarchy& h, const ClusterTables& tables, const LinkStore& links,
                           const std::vector<Rgb>& b, ClusterValues& cv,
                           std::vector<Rgb>& gathered_direct, std::vector<Rgb>& gathered_indirect,
                           bool increment, bool exact_emitted) {
+    const ClusterTree& tree = tables.tree();
     const auto& all = links.cluster_links();
     const auto& by_element = links.cluster_offsets_elements();
     const auto& by_cluster = links.cluster_offsets_clusters();
-    const FaceMeans means = face_means(tree, links, cv);
+    const FaceMeans means = face_means(tree, tables, cv);
     parallel_for_index(h.size(), 256, [&](std::size_t q) {
         Rgb direct, indirect;
         for (std::uint32_t k = by_element[q]; k < by_element[q + 1]; ++k) {
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
-            const SourceTerm s = source_term(h, links, cv, means, b, l, increment, exact_emitted);
+            const SourceTerm s = source_term(h, tables, cv, means, b, l, increment, exact_emitted);
             // An exact link's F holds the cosines.
             const float cosine = l.exact ? 1.0f : float(std::max(0.0, dot(h.normal[q], Vec3(l.d))));
             direct += s.emitted * cosine;
@@ -116,21 +118,21 @@ void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const Lin
     parallel_for_index(tree.size(), 64, [&](std::size_t c) {
         Lobes direct{}, indirect{};
         Slope slope_direct{}, slope_indirect{};
-        // The frame exact links' slopes are given in (LinkSet::exact_slope), once per
+        // The frame exact links' slopes are given in (ClusterTables::exact_slope), once per
         // receiver rather than per link.
         const Frame frame = tree.planar[c] ? Frame::from_normal(tree.normal[c]) : Frame{};
         for (std::uint32_t k = by_cluster[c]; k < by_cluster[c + 1]; ++k) {
             const ClusterLink& l = all[k];
             if (l.self)
                 continue;
-            const SourceTerm s = source_term(h, links, cv, means, b, l, increment, exact_emitted);
+            const SourceTerm s = source_term(h, tables, cv, means, b, l, increment, exact_emitted);
             // An exact link's irradiance is the plane's: deposited along its normal, every
             // root of the face cluster reads it back whole, plus its slope across the plane.
             const Vec3 along = l.exact ? tree.normal[c] : Vec3(l.d);
             lobe_deposit(direct, along, s.emitted);
             lobe_deposit(indirect, along, s.total - s.emitted);
             if (l.exact && (l.d.z != 0 || l.slope_t != 0) && l.g > 0) {
-                const Vec3 t = LinkSet::exact_slope(l, frame) * double(1.0f / l.g);
+                const Vec3 t = ClusterTables::exact_slope(l, frame) * double(1.0f / l.g);
                 for (std::size_t a = 0; a < 3; ++a) {
                     slope_direct[a] += s.emitted * float(t[a]);
                     slope_indirect[a] += (s.total - s.emitted) * float(t[a]);

@@ -6,7 +6,8 @@
 
 #include "hierarchy/cluster_tree.h"
 #include "hierarchy/hierarchy.h"
-#include "links/link_set.h"
+#include "links/cluster_tables.h"
+#include "links/link_store.h"
 
 namespace penumbra::solver {
 
@@ -40,7 +41,7 @@ void init_cluster_values(const ClusterTree& tree, const Hierarchy& h, const std:
 ///        not read for element sources (the caller zeroes it for clusters). Without
 ///        \p exact_emitted, exact links leave what their source emits out (the vertices
 ///        gather it themselves, leaf_direct in hierarchical.cpp).
-void gather_cluster_links(const Hierarchy& h, const ClusterTree& tree, const LinkSet& links,
+void gather_cluster_links(const Hierarchy& h, const ClusterTables& tables, const LinkStore& links,
                           const std::vector<Rgb>& b, ClusterValues& cv,
                           std::vector<Rgb>& gathered_direct, std::vector<Rgb>& gathered_indirect,
                           bool increment = false, bool exact_emitted = true);

@@ -64,7 +64,7 @@ double magnitude(const Rgb& c) {
 
 class Shooter {
 public:
-    Shooter(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters)
+    Shooter(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters)
         : h_(h), links_(links), v_(v), clusters_(clusters),
           by_source_(index_by_source(h, links.links())), trees_(tree_nodes(h)),
           root_of_(h.root_of_nodes()), unshot_(h.size()), pending_link_(h.size()),
@@ -107,7 +107,7 @@ public:
             cv.root_direct.assign(h_.root_count, Rgb{});
             cv.root_indirect.assign(h_.root_count, Rgb{});
             std::vector<Rgb> direct(h_.size()), indirect(h_.size());
-            gather_cluster_links(h_, tree, links_, shot_, cv, direct, indirect, true);
+            gather_cluster_links(h_, *clusters_.tables, links_, shot_, cv, direct, indirect, true);
             push_clusters(tree, h_, cv);
             for (std::size_t q = 0; q < h_.size(); ++q)
                 if (magnitude(indirect[q]) > 0)
@@ -218,7 +218,7 @@ private:
     }
 
     const Hierarchy& h_;
-    const LinkSet& links_;
+    const LinkStore& links_;
     NodeValues& v_;
     Clusters& clusters_;
     LinksBySource by_source_;
@@ -236,7 +236,7 @@ private:
 
 } // namespace
 
-Solved shoot_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
+Solved shoot_links(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters,
                    const SolverSettings& settings, double emitted, SweepLog& log) {
     std::vector<Rgb> before = v.b;
     before.resize(h.size());

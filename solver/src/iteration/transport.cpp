@@ -30,20 +30,20 @@ void size_values(const Hierarchy& h, NodeValues& v) {
 
 // Light links and cluster links to element receivers (into extra_*), and the clusters'
 // irradiance pushed down to the roots, from the current radiosities.
-void gather_extra(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters) {
+void gather_extra(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters) {
     v.extra_direct.assign(h.size(), Rgb{});
     v.extra_indirect.assign(h.size(), Rgb{});
     for (const LightLink& l : links.light_links()) // few; serial keeps the order fixed
         v.extra_direct[l.receiver] += l.irradiance;
     if (clusters.enabled) {
-        gather_cluster_links(h, clusters.tree, links, v.b, clusters.values, v.extra_direct,
+        gather_cluster_links(h, *clusters.tables, links, v.b, clusters.values, v.extra_direct,
                              v.extra_indirect);
         push_clusters(clusters.tree, h, clusters.values);
     }
 }
 
 // Element links of node q: what its sources send, split into emission and the rest.
-void gather_node(const Hierarchy& h, const LinkSet& links, NodeValues& v,
+void gather_node(const Hierarchy& h, const LinkStore& links, NodeValues& v,
                  const std::vector<Rgb>& b_source, std::uint32_t q) {
     const auto& offsets = links.receiver_offsets();
     const auto& all = links.links();
@@ -192,7 +192,7 @@ namespace {
 
 // One Gauss–Seidel sweep by blocks of roots: each block gathers, then pushes and pulls its
 // trees, before the next block gathers. Cluster links are gathered once, at the start.
-double sweep_gauss_seidel(const Hierarchy& h, const LinkSet& links, NodeValues& v,
+double sweep_gauss_seidel(const Hierarchy& h, const LinkStore& links, NodeValues& v,
                           Clusters& clusters, const TreeNodes& trees, double emitted) {
     size_values(h, v);
     gather_extra(h, links, v, clusters);
@@ -249,7 +249,7 @@ void pull_all(const Hierarchy& h, NodeValues& v) {
     parallel_for_index(h.root_count, 16, [&](std::size_t r) { pull(h, v, std::uint32_t(r)); });
 }
 
-double sweep_jacobi(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
+double sweep_jacobi(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters,
                     double emitted) {
     size_values(h, v);
     gather_extra(h, links, v, clusters);
@@ -275,7 +275,7 @@ Solution root_snapshot(const RadiosityMesh& mesh, const Hierarchy& h, const Node
     return snapshot_solution(mesh, er);
 }
 
-Solved solve_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
+Solved solve_links(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters,
                    const SolverSettings& settings, Iteration iteration, double emitted,
                    SweepLog& log) {
     if (iteration == Iteration::shooting)

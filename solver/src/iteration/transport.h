@@ -7,6 +7,7 @@
 // source of, and lets receivers collect it lazily.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,8 @@
 #include "hierarchy/hierarchy.h"
 #include "hierarchy/leaf_weights.h"
 #include "iteration/cluster_transport.h"
-#include "links/link_set.h"
+#include "links/cluster_tables.h"
+#include "links/link_store.h"
 #include "solver/solver.h"
 
 namespace penumbra::solver {
@@ -45,6 +47,8 @@ struct Clusters {
     ClusterTree tree;
     ClusterValues values;
     bool enabled = false;
+    /// Of tree and values, from the first links to the last gather.
+    std::unique_ptr<ClusterTables> tables;
 };
 
 /// Where sweeps and shots are reported: the residual history and the observer's snapshots
@@ -68,7 +72,7 @@ void pull_emit(const Hierarchy& h, NodeValues& v);
 /// \brief Solves the radiosities of the current links with \p iteration until the relative
 ///        change (or unshot power) falls below settings.residual. \p emitted: W, the largest
 ///        channel of the emitted power.
-Solved solve_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
+Solved solve_links(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters,
                    const SolverSettings& settings, Iteration iteration, double emitted,
                    SweepLog& log);
 
@@ -76,11 +80,11 @@ Solved solve_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clus
 // iteration/hierarchical_shooting.cpp).
 
 /// One Jacobi sweep over every link and tree; returns Σ A |ΔB| over the leaves / emitted.
-double sweep_jacobi(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
+double sweep_jacobi(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters,
                     double emitted);
 /// Progressive shooting on the hierarchy (iteration/hierarchical_shooting.cpp): one Jacobi sweep
 /// for the direct light, then Southwell shots of the change, then a last sweep.
-Solved shoot_links(const Hierarchy& h, const LinkSet& links, NodeValues& v, Clusters& clusters,
+Solved shoot_links(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters,
                    const SolverSettings& settings, double emitted, SweepLog& log);
 /// The nodes of every root's tree, depth first, parents before children (CSR by root).
 struct TreeNodes {

@@ -5,13 +5,13 @@
 // error exceeds the threshold, at the cluster end of a cluster–element link, else at the
 // larger end. Pairs of elements become ordinary links.
 //
-// Oracle: a pair whose bounding radii sum to half their distance or more is always split (the
-// point model fails there, whatever the rays say); otherwise the irradiance the link brings to
-// a surface facing the source (by the larger of the centres' point kernel and the link's own
-// calibrated one), times the relative error of the
-// point approximation (2 × the bounding radii over the distance) where it is visible, plus the
-// uncertainty of its visibility: all of it for partly occluded links, 1/n for links all n of
-// whose rays were blocked (n blocked rays cannot tell 0 from about 1/n). The irradiance counts
+// Oracle (its estimates and constants: oracle/oracle.h): a pair whose bounding radii sum to
+// half their distance or more is always split (the point model fails there, whatever the
+// rays say); otherwise the irradiance the link brings to a surface facing the source (by the
+// larger of the centres' point kernel and the link's own calibrated one), times the relative
+// error of the point approximation (2 × the bounding radii over the distance) where it is visible,
+// plus the uncertainty of its visibility: all of it for partly occluded links, 1/n for links all n
+// of whose rays were blocked (n blocked rays cannot tell 0 from about 1/n). The irradiance counts
 // what the source emits in full and what it reflects divided by k_reflected_slack. Such a
 // link is first given more rays (up to 64), which is far cheaper than splitting it: the parts
 // of a wall-separated pair are occluded again, and splitting the receiver does not lower the
@@ -40,71 +40,11 @@ namespace penumbra::solver {
 namespace {
 
 constexpr int k_cluster_rays = 4;
-/// A cluster link is kept only while the bounding spheres' radii sum to less than this times
-/// the distance between the centres (a multipole method's admissibility). Measured on the
-/// 2k office floor against 128 area-drawn rays per link: links with radii of 1–2 × the
-/// distance carried 3 % (cluster pairs) to 30 % (cluster–element) of their true transfer (their
-/// four rays, between points that face the other centre, see little of what the parts
-/// exchange); with this bound the links' summed model transfer is 0.97 of the true one.
-constexpr double k_admissible = 0.5;
-/// The reflected light a cluster link brings is weighed against this many times the threshold
-/// of its direct light (what its source emits): reflected light is smooth, and direct light
-/// is what the vertices' far part shows. With face clusters and calibrated kernels, on the
-/// 2x1-office floor of tessellation 5: 5.63 M links at 3, 4.65 M at 5, 3.64 M at 10 (1 at
-/// first: 8.9 M); the lamp room's power error at ε = 3e-3 is 0.11 / 0.17 / 0.26 %, two
-/// sealed rooms take 2.08 / 2.10 / 2.16 × one room's links, and the hall's vertex direct
-/// light stays at 0.61 %.
-constexpr double k_reflected_slack = 5.0;
-/// The same for exact links (all their light is reflected), whose receivers take the plane
-/// of their form factor (links/exact_links.cpp). When it was chosen (with a partly occluded
-/// link's whole transfer counted 4 times as its shadow error), on the 2x2 office floor of
-/// tessellation 5 at 5 / 7.5 / 10: 3.76 / 3.66 / 3.09 M links; the lamp room's power error at
-/// ε = 3e-3 was 0.13 / 0.17 / 0.27 %, its sensors within 0.44 / 0.54 / 0.77 % of all pairs'.
-constexpr double k_exact_slack = 7.5;
-
-/// Whether a pair of ends whose centres are \p r apart and whose bounding radii sum to
-/// \p radii may exchange light through one cluster link (k_admissible).
-bool admissible(double r, double radii) {
-    return radii < k_admissible * r;
-}
 constexpr int k_facing_tries = 8;
 /// Largest factor the true cosines may scale a cluster link's kernel by (cast_cluster_rays).
 constexpr double k_max_calibration = 4.0;
-/// Rays a link all of whose rays were blocked may get before the oracle splits it instead.
-/// On the 2x2 office floor of tessellation 5 at min area 0.244 m², against a solve at a 3x
-/// finer ε, at 32 / 64 / 128 / 256: 9.4 / 9.9 / 10.9 / 11.1 s, 44 / 47 / 50 / 54 M rays,
-/// the elements' indirect irradiance 2.70 / 2.63 / 2.61 / 2.61 % off, its mean 0.9910 /
-/// 0.9923 / 0.9927 / 0.9927 of the reference's (the bias of links taken as dark).
-constexpr int k_max_cluster_rays = 64;
 /// An all-blocked link's rays traced to their first hits before the rest (certified_blocked).
 constexpr std::size_t k_first_certifying_rays = 4;
-/// Such a link gets rays until its uncertainty is this many times below the threshold: a link
-/// taken as occluded loses what light it carries, always in the same direction.
-constexpr double k_resample_margin = 16.0;
-/// Source ends are drawn by area × (radiosity + this × the brightest root's radiosity).
-constexpr double k_exitance_floor = 1e-3;
-/// Normal components below this do not put a surface in an axis lobe's bounds, nor make it
-/// face a plane's side (occlusion certificates): it radiates nothing that way to speak of.
-constexpr double k_lobe_component = 1e-6;
-
-float round_down(double x) {
-    const float f = float(x);
-    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-float round_up(double x) {
-    const float f = float(x);
-    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
-
-// The part of the open irradiance a link's visibility may be off by: all of it where the rays
-// disagree; where all n were blocked, 1/n (n blocked rays cannot tell 0 from about 1/n).
-double visibility_uncertainty(const ClusterLink& link) {
-    if (link.partial)
-        return 1.0;
-    if (link.visible() > 0 || link.rays == 0)
-        return 0.0;
-    return 1.0 / double(link.rays);
-}
 
 enum ClusterDecision : std::uint8_t { keep = 0, split_receiver, split_source, split_self };
 
@@ -157,7 +97,7 @@ Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec
     const std::uint32_t c = cluster_index(n);
     for (int attempt = 0; attempt < k_facing_tries; ++attempt) {
         const std::size_t k = draw_root(c, rng.next_double(), running);
-        if (dot(toward, dfs_plane_[k].n) <= dfs_plane_[k].d) {
+        if (dot(toward, tables_->dfs_plane_[k].n) <= tables_->dfs_plane_[k].d) {
             // A face cluster's roots share its plane (to its grouping's tolerance): none of
             // the others would face it either, but for an end within that tolerance of the
             // plane (a grazing transfer). The stream skips their draws, as if they had been
@@ -168,7 +108,7 @@ Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec
             }
             continue;
         }
-        const std::uint32_t e = dfs_roots_[k];
+        const std::uint32_t e = tables_->dfs_roots_[k];
         normal = h_.normal[e];
         return sample_triangle(h_.triangle[e], rng.next_double(), rng.next_double());
     }
@@ -178,7 +118,7 @@ Vec3 LinkSet::sample_facing_point(NodeRef n, const Vec3& toward, Pcg32& rng, Vec
 
 std::size_t LinkSet::draw_root(std::uint32_t c, double u,
                                const std::vector<double>& running) const {
-    const std::uint32_t begin = root_begin_[c], end = root_end_[c];
+    const std::uint32_t begin = tables_->root_begin_[c], end = tables_->root_end_[c];
     const double x = running[begin] + u * (running[end] - running[begin]);
     // The first root whose running sum passes x: in [lo, hi) of running. Roots' weights vary
     // smoothly in depth-first order, so the search gallops out from where x would be were
@@ -229,9 +169,9 @@ bool LinkSet::faces_box(std::uint32_t c, NodeRef other) const {
     // A lobe +a can see the other node if some of it lies beyond the cluster's low side.
     const double eps = 1e-9 * h_.diagonal;
     for (std::size_t a = 0; a < 3; ++a) {
-        if (area_lobes_[c][2 * a].max_component() > 0 && hi[a] > tree_->lo[c][a] + eps)
+        if (tables_->area_lobes_[c][2 * a].max_component() > 0 && hi[a] > tree_->lo[c][a] + eps)
             return true;
-        if (area_lobes_[c][2 * a + 1].max_component() > 0 && lo[a] < tree_->hi[c][a] - eps)
+        if (tables_->area_lobes_[c][2 * a + 1].max_component() > 0 && lo[a] < tree_->hi[c][a] - eps)
             return true;
     }
     return false;
@@ -268,7 +208,7 @@ ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
     // it dark (which spares the links its parts would make: most pairs across a partition
     // are close ones). Otherwise no ray can be cast only where no surface of an end faces the
     // other.
-    const bool near = !admissible(r, rq + rp);
+    const bool near = !oracle::admissible(r, rq + rp);
     if (near && centres_occluded(q, p))
         return link; // carries nothing: the refinement drops it
     if (near || !cast_cluster_rays(link, k_cluster_rays)) {
@@ -313,8 +253,8 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     hits.clear();
     for (int k = 0; k < count; ++k) {
         Vec3 nq, np;
-        const Vec3 xq = sample_facing_point(q, cp, rng, nq, dfs_area_);
-        const Vec3 xp = sample_facing_point(p, cq, rng, np, dfs_exitance_);
+        const Vec3 xq = sample_facing_point(q, cp, rng, nq, tables_->dfs_area_);
+        const Vec3 xp = sample_facing_point(p, cq, rng, np, tables_->dfs_exitance_);
         if (nq == Vec3{} || np == Vec3{})
             continue; // no surface of a cluster faces the other end
         const Vec3 from = xq + nq * settings_.offset, to = xp + np * settings_.offset;
@@ -373,9 +313,9 @@ bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
 
 bool LinkSet::shaft_end(NodeRef n, NodeRef other, std::uint32_t plane, double side,
                         std::vector<Vec3>& points) const {
-    const double tol = occluders_.tolerance();
-    const Vec3& normal = occluders_.normal(plane);
-    auto beyond = [&](const Vec3& x) { return side * occluders_.distance(plane, x); };
+    const double tol = tables_->occluders_.tolerance();
+    const Vec3& normal = tables_->occluders_.normal(plane);
+    auto beyond = [&](const Vec3& x) { return side * tables_->occluders_.distance(plane, x); };
     if (!is_cluster(n)) {
         const bool faces_other = side * dot(h_.normal[n], normal) < -k_lobe_component;
         // Of an element, only the part in front of an element at the other end exchanges
@@ -421,7 +361,8 @@ bool LinkSet::shaft_end(NodeRef n, NodeRef other, std::uint32_t plane, double si
     for (std::size_t a = 0; a < 3; ++a) {
         if (std::abs(normal[a]) <= k_lobe_component)
             continue;
-        const auto& box = lobe_bounds_[c][std::size_t(lobe_index(int(a), -side * normal[a]))];
+        const auto& box =
+            tables_->lobe_bounds_[c][std::size_t(lobe_index(int(a), -side * normal[a]))];
         if (box[0] > box[3])
             continue; // no such surface
         corners(Vec3(box[0], box[1], box[2]), Vec3(box[3], box[4], box[5]),
@@ -457,7 +398,7 @@ bool LinkSet::certified_blocked(NodeRef q, NodeRef p, std::vector<Segment>& segm
 }
 
 bool LinkSet::centres_occluded(NodeRef q, NodeRef p) const {
-    if (occluders_.size() == 0)
+    if (!tables_ || tables_->occluders_.size() == 0)
         return false;
     const Vec3 cq = node_centre(q), cp = node_centre(p);
     // Off the ends themselves: an element's centre lies on its own plane.
@@ -481,7 +422,7 @@ bool LinkSet::centres_occluded(NodeRef q, NodeRef p) const {
 
 bool LinkSet::certified_occluded(NodeRef q, NodeRef p, std::span<const std::int32_t> hits,
                                  std::vector<std::uint32_t>& tried) const {
-    if (occluders_.size() == 0)
+    if (!tables_ || tables_->occluders_.size() == 0)
         return false;
     // Called for most new pairs: no allocation per call.
     thread_local std::vector<Vec3> a, b;
@@ -489,18 +430,19 @@ bool LinkSet::certified_occluded(NodeRef q, NodeRef p, std::span<const std::int3
     for (const std::int32_t e : hits) {
         if (e < 0 || std::size_t(e) >= h_.root_count)
             continue;
-        const std::uint32_t plane = occluders_.plane_of_root(std::uint32_t(e));
+        const std::uint32_t plane = tables_->occluders_.plane_of_root(std::uint32_t(e));
         if (std::find(tried.begin(), tried.end(), plane) != tried.end())
             continue;
         tried.push_back(plane);
-        const double dq = occluders_.distance(plane, cq), dp = occluders_.distance(plane, cp);
+        const double dq = tables_->occluders_.distance(plane, cq),
+                     dp = tables_->occluders_.distance(plane, cp);
         if (dq * dp >= 0)
             continue; // the centres are not on its two sides
         const double side = dq > 0 ? 1.0 : -1.0;
         a.clear();
         b.clear();
         if (shaft_end(q, p, plane, side, a) && shaft_end(p, q, plane, -side, b) &&
-            occluders_.blocks(plane, a, b))
+            tables_->occluders_.blocks(plane, a, b))
             return true;
     }
     return false;
@@ -512,14 +454,12 @@ LinkSet::PairGeometry LinkSet::pair_geometry(const ClusterLink& link) const {
 }
 
 double LinkSet::cluster_link_error(const ClusterLink& link, const std::vector<Rgb>& b) const {
-    if (link.self) // its parts could bring each other up to its brightest radiosity
-        return double((*peak_)[cluster_index(link.receiver)]);
+    if (link.self)
+        return oracle::self_link_error((*tables_->peak_)[cluster_index(link.receiver)]);
     const PairGeometry g = pair_geometry(link);
-    if (!admissible(g.r, g.radii)) // too close for a point: split, whatever its rays said
+    if (!oracle::admissible(g.r, g.radii)) // too close for a point: split, whatever its rays said
         return std::numeric_limits<double>::infinity();
-    const double size_factor = 2.0 * g.radii / g.r;
-    return weighed_irradiance(link, b, g) *
-           (double(link.visible()) * size_factor + visibility_uncertainty(link));
+    return oracle::lobe_link_error(link, g.r, g.radii, weighed_irradiance(link, b, g));
 }
 
 double LinkSet::weighed_irradiance(const ClusterLink& link, const std::vector<Rgb>& b,
@@ -528,9 +468,9 @@ double LinkSet::weighed_irradiance(const ClusterLink& link, const std::vector<Rg
     // angle the direction between the parts differs from the centres' (a lamp in one half of a
     // cluster pair radiates down onto the floor of the other half, not sideways).
     const double spread = g.r > 0 ? std::min(1.0, g.radii / g.r) : 1.0;
-    const double all = intensity_toward(link, *exitance_, b, spread);
-    const double direct = intensity_toward(link, *emitted_, h_.emission, spread);
-    const double weighed = direct + std::max(0.0, all - direct) / k_reflected_slack;
+    const double all = intensity_toward(link, *tables_->exitance_, b, spread);
+    const double direct = intensity_toward(link, *tables_->emitted_, h_.emission, spread);
+    const double weighed = oracle::weighed_intensity(all, direct);
     const double r_floor = 1e-6 * h_.diagonal; // coincident centres: refine, without overflow
     const double point = 1.0 / (k_pi * std::max(g.r * g.r, r_floor * r_floor));
     // A link with open rays brings its own kernel g (calibrated to the true cosines, which may
@@ -554,11 +494,10 @@ double LinkSet::intensity_toward(const ClusterLink& link, const std::vector<Lobe
 }
 
 // An all-blocked link above the threshold only for its visibility's uncertainty gets as many
-// rays as would bring that uncertainty under the threshold, up to k_max_cluster_rays: one
+// rays as would bring that uncertainty under the threshold (oracle::resample_rays): one
 // link's rays settle what would otherwise be split level after level (splitting its receiver
 // does not lower the irradiance it might bring).
 bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
-    const double threshold = settings_.cluster_threshold;
     std::vector<std::uint8_t> changed(cluster_links_.size(), 0);
     parallel_for_index(cluster_links_.size(), 256, [&](std::size_t k) {
         // A link kept by an earlier pass of this refine() got the rays it asked for then (but
@@ -568,13 +507,12 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
         // 180 links of 4.5 M differ.
         ClusterLink& l = cluster_links_[k];
         if (cluster_kept_[k] || l.self || l.exact || l.visible() > 0 || l.rays == 0 ||
-            l.rays >= k_max_cluster_rays)
+            l.rays >= oracle::k_max_cluster_rays)
             return;
         const double open = weighed_irradiance(l, b, pair_geometry(l));
-        if (open / double(l.rays) <= threshold / k_resample_margin)
+        const double wanted = oracle::resample_rays(settings_, open, l.rays);
+        if (wanted == 0)
             return;
-        const double wanted =
-            std::min(double(k_max_cluster_rays), std::ceil(k_resample_margin * open / threshold));
         const std::uint16_t before = l.rays;
         cast_cluster_rays(l, int(wanted) - int(l.rays));
         changed[k] = l.rays > before; // no end faced the other: nothing to add
@@ -584,14 +522,6 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
     return std::any_of(changed.begin(), changed.end(), [](std::uint8_t c) { return c != 0; });
 }
 
-// An exact link from a source that does not emit carries reflected light only: it is weighed
-// as a lobe link's reflected light is (against the element threshold, ε × the brightest
-// exitance, a lamp's, the lamp room's sensor behind the box read 3.1 % high). One from an
-// emitter is weighed as a lobe link's direct light.
-double LinkSet::exact_bar(NodeRef p) const {
-    return emits(p) ? settings_.cluster_threshold : k_exact_slack * settings_.cluster_threshold;
-}
-
 bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
     const bool resampled = resample_occluded(b);
     std::vector<std::uint8_t> decision(cluster_links_.size(), keep);
@@ -599,8 +529,10 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         const ClusterLink& l = cluster_links_[k];
         if (cluster_kept_[k])
             return;
-        const bool over = l.exact ? exact_link_error(l, b, b_range) > exact_bar(l.source)
-                                  : cluster_link_error(l, b) > settings_.cluster_threshold;
+        const bool over =
+            l.exact ? oracle::refine_exact_link(settings_, exact_link_error(l, b, b_range),
+                                                tables_->emits(l.source))
+                    : oracle::refine_lobe_link(settings_, cluster_link_error(l, b));
         if (!over)
             return;
         if (l.self) {
@@ -715,141 +647,12 @@ LinkSet::exact_reverses(const std::vector<std::pair<NodeRef, NodeRef>>& pairs) c
     return reverse;
 }
 
-// A source end is drawn by exitance (area × radiosity), so that the rays' visible fraction is
-// that of the light it sends: dark parts of a cluster are the occluded ones more often than
-// not (under desks, in corners), and drawing by area made cluster links carry too little.
-// The floor keeps the parts of a cluster without radiosity yet (reflectors before the first
-// solve) drawn by area.
-void LinkSet::weigh_sources(const std::vector<Rgb>& b) {
-    double peak = 0;
-    for (std::uint32_t r : dfs_roots_)
-        peak = std::max(peak, double(b[r].max_component()));
-    const double floor = peak > 0 ? k_exitance_floor * peak : 1.0; // no light: by area
-    dfs_exitance_.assign(dfs_roots_.size() + 1, 0.0);
-    for (std::size_t k = 0; k < dfs_roots_.size(); ++k) {
-        const std::uint32_t r = dfs_roots_[k];
-        dfs_exitance_[k + 1] =
-            dfs_exitance_[k] + h_.area[r] * (double(b[r].max_component()) + floor);
-    }
-}
-
-void LinkSet::attach_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
-                              const std::vector<Lobes>& emitted, const std::vector<float>& peak,
-                              const std::vector<float>& departure) {
-    tree_ = &tree;
-    exitance_ = &exitance;
-    emitted_ = &emitted;
-    peak_ = &peak;
-    departure_ = &departure;
-    pull_lobes(tree, h_, std::vector<Rgb>(h_.root_count, Rgb(1.0f)), area_lobes_);
-    dfs_roots_.clear();
-    root_begin_.assign(tree.size(), 0);
-    root_end_.assign(tree.size(), 0);
-    auto visit = [&](auto&& self, std::uint32_t c) -> void {
-        root_begin_[c] = std::uint32_t(dfs_roots_.size());
-        for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
-            const NodeRef child = tree.children[k];
-            if (is_cluster(child))
-                self(self, cluster_index(child));
-            else
-                dfs_roots_.push_back(child);
-        }
-        root_end_[c] = std::uint32_t(dfs_roots_.size());
-    };
-    if (tree.size() > 0)
-        visit(visit, 0);
-    dfs_area_.assign(dfs_roots_.size() + 1, 0.0);
-    dfs_plane_.resize(dfs_roots_.size());
-    for (std::size_t k = 0; k < dfs_roots_.size(); ++k) {
-        const std::uint32_t r = dfs_roots_[k];
-        dfs_area_[k + 1] = dfs_area_[k] + h_.area[r];
-        dfs_plane_[k] = {h_.normal[r], dot(h_.normal[r], h_.triangle[r][0])};
-    }
-    dfs_exitance_ = dfs_area_; // until refine() weighs the sources by their radiosity
-    build_boundaries();
-    occluders_ = OccluderPlanes(h_, twin_);
-    // Lobe bounds, children before parents (parents precede their children in the tree).
-    constexpr float inf = std::numeric_limits<float>::infinity();
-    lobe_bounds_.assign(tree.size(), {});
-    for (auto& lobes : lobe_bounds_)
-        lobes.fill({inf, inf, inf, -inf, -inf, -inf});
-    auto merge = [](std::array<float, 6>& into, const std::array<float, 6>& box) {
-        for (int k = 0; k < 3; ++k) {
-            into[std::size_t(k)] = std::min(into[std::size_t(k)], box[std::size_t(k)]);
-            into[std::size_t(k + 3)] = std::max(into[std::size_t(k + 3)], box[std::size_t(k + 3)]);
-        }
-    };
-    for (std::size_t c = tree.size(); c-- > 0;)
-        for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
-            const NodeRef child = tree.children[k];
-            if (is_cluster(child)) {
-                for (std::size_t l = 0; l < 6; ++l)
-                    merge(lobe_bounds_[c][l], lobe_bounds_[cluster_index(child)][l]);
-                continue;
-            }
-            std::array<float, 6> box{inf, inf, inf, -inf, -inf, -inf};
-            for (const Vec3& v : h_.triangle[child])
-                for (std::size_t a = 0; a < 3; ++a) {
-                    box[a] = std::min(box[a], round_down(v[a]));
-                    box[a + 3] = std::max(box[a + 3], round_up(v[a]));
-                }
-            const Vec3& n = h_.normal[child];
-            for (std::size_t a = 0; a < 3; ++a)
-                if (std::abs(n[a]) > k_lobe_component)
-                    merge(lobe_bounds_[c][std::size_t(lobe_index(int(a), n[a]))], box);
-        }
-}
-
-void LinkSet::release_refinement_tables() {
-    tree_ = nullptr;
-    exitance_ = emitted_ = nullptr;
-    peak_ = departure_ = nullptr;
-    boundary_ = {};
-    boundary_begin_ = {};
-    exact_source_ = {};
-    area_lobes_ = {};
-    dfs_roots_ = {};
-    root_begin_ = {};
-    root_end_ = {};
-    dfs_area_ = {};
-    dfs_exitance_ = {};
-    dfs_plane_ = {};
-    occluders_ = OccluderPlanes();
-    lobe_bounds_ = {};
-}
-
-void LinkSet::link_clusters(const ClusterTree& tree, const std::vector<Lobes>& exitance,
-                            const std::vector<Lobes>& emitted, const std::vector<float>& peak,
-                            const std::vector<float>& departure) {
-    attach_clusters(tree, exitance, emitted, peak, departure);
+void LinkSet::link_clusters() {
     links_.clear();
     cluster_links_.clear();
     cluster_links_.push_back(make_cluster_link(cluster_ref(0), cluster_ref(0)));
     link_lights();
     sort_and_index();
-}
-
-void LinkSet::index_cluster_links() {
-    // In place (a stable sort would copy them): a receiver links to a source once, so the
-    // order is total and the result the same on any thread count.
-    tbb::parallel_sort(cluster_links_.begin(), cluster_links_.end(),
-                       [](const ClusterLink& a, const ClusterLink& b) {
-                           return a.receiver != b.receiver ? a.receiver < b.receiver
-                                                           : a.source < b.source;
-                       });
-    cl_elements_.assign(h_.size() + 1, 0);
-    cl_clusters_.assign(tree_->size() + 1, 0);
-    for (const ClusterLink& l : cluster_links_) {
-        if (is_cluster(l.receiver))
-            ++cl_clusters_[cluster_index(l.receiver) + 1];
-        else
-            ++cl_elements_[l.receiver + 1];
-    }
-    for (std::size_t n = 0; n < h_.size(); ++n)
-        cl_elements_[n + 1] += cl_elements_[n];
-    cl_clusters_[0] = cl_elements_.back();
-    for (std::size_t c = 0; c < tree_->size(); ++c)
-        cl_clusters_[c + 1] += cl_clusters_[c];
 }
 
 } // namespace penumbra::solver

@@ -1,4 +1,4 @@
-// Exact links of hierarchical radiosity (see ClusterLink in links/link_set.h): light between two
+// Exact links of hierarchical radiosity (see ClusterLink in links/link_store.h): light between two
 // planar ends, one of them a face cluster, computed as between two elements. The receiver's
 // mean form factor comes from point-to-polygon form factors (Lambert's contour) at quadrature
 // points spread over its roots; the source polygon of a face cluster is the boundary of the
@@ -47,18 +47,6 @@ constexpr std::uint32_t k_clip_roots = 64;
 /// An exact link with a receiver cluster closer to its source than this times its radius
 /// takes the finest points.
 constexpr double k_near_gap = 0.5;
-/// A receiver whose direction from a cluster source's centroid is within this sine of the
-/// source's normal gives no offset (planar_direction, seen_offset).
-constexpr double k_min_slope_sine = 0.05;
-/// A partly occluded exact link to a cluster receiver counts this many times F · B v (1 − v)
-/// as error (exact_link_error; 4 times the mean error of its visibility over a sharp shadow).
-/// Without it the ceiling of the lamp room, shadowed by the lamp 1 cm below it, took light
-/// its clusters' mean visibility gave it and sent it into the lamp's back (its power error
-/// at ε = 1e-2 was −0.65 %, −0.36 % with it). Counting 4 F B v instead (the whole transfer,
-/// whatever the shadow's share) split links whose shadow was a sliver: the 2x2 office floor
-/// took 2.22 M links rather than 2.03 M, and the lamp room's power error at ε = 3e-3 was
-/// 0.19 % rather than 0.03 %.
-constexpr double k_shadow_weight = 8.0;
 
 } // namespace
 
@@ -84,17 +72,7 @@ bool LinkSet::planar_end(NodeRef n) const {
 }
 
 bool LinkSet::exact_source(NodeRef n) const {
-    return !is_cluster(n) || exact_source_[cluster_index(n)] != 0;
-}
-
-bool LinkSet::emits(NodeRef n) const {
-    if (!is_cluster(n))
-        return !h_.emission[n].is_black();
-    const std::uint32_t c = cluster_index(n);
-    for (const Rgb& lobe : (*emitted_)[c])
-        if (!lobe.is_black())
-            return true;
-    return false;
+    return !is_cluster(n) || tables_->exact_source_[cluster_index(n)] != 0;
 }
 
 LinkSet::Plane LinkSet::node_plane(NodeRef n) const {
@@ -102,7 +80,7 @@ LinkSet::Plane LinkSet::node_plane(NodeRef n) const {
         return {h_.normal[n], dot(h_.normal[n], h_.triangle[n][0])};
     const std::uint32_t c = cluster_index(n);
     const Vec3& normal = tree_->normal[c];
-    return {normal, dot(normal, h_.triangle[dfs_roots_[root_begin_[c]]][0])};
+    return {normal, dot(normal, h_.triangle[tables_->dfs_roots_[tables_->root_begin_[c]]][0])};
 }
 
 template <typename Fn> void LinkSet::for_each_corner(NodeRef n, Fn&& fn) const {
@@ -115,143 +93,6 @@ template <typename Fn> void LinkSet::for_each_corner(NodeRef n, Fn&& fn) const {
     const Vec3& hi = tree_->hi[cluster_index(n)];
     for (int k = 0; k < 8; ++k)
         fn(Vec3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z));
-}
-
-// Directed boundary edges of every face cluster, children before parents: a cluster's
-// boundary is its children's (a root's: its three edges, wound counter-clockwise about the
-// plane's normal) less the edges that appear both ways. Vertices shared by roots are the
-// same doubles (the mesh's), so an interior edge's two directions compare equal.
-void LinkSet::build_boundaries() {
-    const ClusterTree& tree = *tree_;
-    std::vector<std::vector<BoundaryEdge>> edges(tree.size());
-    auto root_edges = [&](std::uint32_t r, const Vec3& normal, std::vector<BoundaryEdge>& out) {
-        const auto& t = h_.triangle[r];
-        const bool ccw = dot(cross(t[1] - t[0], t[2] - t[0]), normal) >= 0;
-        for (std::uint8_t k = 0; k < 3; ++k) {
-            const auto next = std::uint8_t((k + 1) % 3);
-            out.push_back(ccw ? BoundaryEdge{r, k, next} : BoundaryEdge{r, next, k});
-        }
-    };
-    auto point = [&](std::uint32_t r, std::uint8_t corner) -> const Vec3& {
-        return h_.triangle[r][corner];
-    };
-    auto key = [&](const Vec3& a, const Vec3& b) {
-        return std::array<double, 6>{a.x, a.y, a.z, b.x, b.y, b.z};
-    };
-    for (std::size_t c = tree.size(); c-- > 0;) {
-        if (!tree.planar[c])
-            continue;
-        std::vector<BoundaryEdge> all;
-        for (std::uint32_t k = tree.child_begin[c]; k < tree.child_begin[c + 1]; ++k) {
-            const NodeRef child = tree.children[k];
-            if (is_cluster(child)) {
-                std::vector<BoundaryEdge>& part = edges[cluster_index(child)];
-                all.insert(all.end(), part.begin(), part.end());
-            } else {
-                root_edges(child, tree.normal[c], all);
-            }
-        }
-        // Cancel an edge against its reverse.
-        std::vector<std::pair<std::array<double, 6>, std::uint32_t>> keyed(all.size());
-        for (std::size_t i = 0; i < all.size(); ++i)
-            keyed[i] = {key(point(all[i].root, all[i].from), point(all[i].root, all[i].to)),
-                        std::uint32_t(i)};
-        std::sort(keyed.begin(), keyed.end());
-        std::vector<BoundaryEdge>& out = edges[c];
-        for (std::size_t i = 0; i < all.size(); ++i) {
-            const BoundaryEdge& e = all[i];
-            const Vec3 &a = point(e.root, e.from), &b = point(e.root, e.to);
-            const auto reverse = key(b, a);
-            const auto it = std::lower_bound(
-                keyed.begin(), keyed.end(), reverse,
-                [](const auto& x, const std::array<double, 6>& k) { return x.first < k; });
-            if (it == keyed.end() || it->first != reverse)
-                out.push_back(e);
-        }
-    }
-    boundary_begin_.assign(tree.size() + 1, 0);
-    boundary_.clear();
-    for (std::size_t c = 0; c < tree.size(); ++c) {
-        merge_collinear(edges[c], boundary_);
-        boundary_begin_[c + 1] = std::uint32_t(boundary_.size());
-    }
-    boundary_.shrink_to_fit();
-    // An emitting face cluster is an exact source when its emission is uniform (a lamp's
-    // panel, not a lamp and the ceiling around it): the vertices of its receivers gather it
-    // exactly, root by root.
-    exact_source_.assign(tree.size(), 0);
-    for (std::size_t c = 0; c < tree.size(); ++c) {
-        if (!tree.planar[c])
-            continue;
-        const Rgb& first = h_.emission[dfs_roots_[root_begin_[c]]];
-        bool uniform = true;
-        for (std::uint32_t k = root_begin_[c]; k < root_end_[c] && uniform; ++k)
-            uniform = h_.emission[dfs_roots_[k]] == first;
-        exact_source_[c] = uniform;
-    }
-}
-
-// A tessellated wall's boundary is its outline cut at every tessellation vertex: a 5 x 5
-// wall of 50 triangles has 20 boundary edges and 4 straight runs. A vertex joins two edges
-// into a run where it starts one edge and ends one other, the two in line.
-void LinkSet::merge_collinear(const std::vector<BoundaryEdge>& edges,
-                              std::vector<ContourEdge>& out) const {
-    const std::size_t n = edges.size();
-    auto start = [&](std::size_t i) -> const Vec3& {
-        return h_.triangle[edges[i].root][edges[i].from];
-    };
-    auto end = [&](std::size_t i) -> const Vec3& {
-        return h_.triangle[edges[i].root][edges[i].to];
-    };
-    auto key = [](const Vec3& v) { return std::array<double, 3>{v.x, v.y, v.z}; };
-    // Edges by their start and by their end point.
-    std::vector<std::pair<std::array<double, 3>, std::uint32_t>> starts(n), ends(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        starts[i] = {key(start(i)), std::uint32_t(i)};
-        ends[i] = {key(end(i)), std::uint32_t(i)};
-    }
-    std::sort(starts.begin(), starts.end());
-    std::sort(ends.begin(), ends.end());
-    auto range = [](const auto& sorted, const std::array<double, 3>& k) {
-        return std::equal_range(sorted.begin(), sorted.end(), std::pair(k, std::uint32_t(0)),
-                                [](const auto& x, const auto& y) { return x.first < y.first; });
-    };
-    constexpr std::uint32_t none = ~std::uint32_t(0);
-    std::vector<std::uint32_t> next(n, none);
-    std::vector<std::uint8_t> continues(n, 0); // the run of the edge before goes on into it
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto k = key(end(i));
-        const auto [s0, s1] = range(starts, k);
-        const auto [e0, e1] = range(ends, k);
-        if (s1 - s0 != 1 || e1 - e0 != 1)
-            continue; // not a simple vertex of the outline
-        const std::uint32_t j = s0->second;
-        const Vec3 a = end(i) - start(i), b = end(j) - start(j);
-        // In line to a relative 1e-9: the sliver between the run and its edges is ~1e-9 of
-        // their length squared.
-        if (dot(a, b) > 0 && length(cross(a, b)) <= 1e-9 * length(a) * length(b)) {
-            next[i] = j;
-            continues[j] = 1;
-        }
-    }
-    std::vector<std::uint8_t> done(n, 0);
-    auto emit = [&](std::size_t first, std::size_t last) {
-        out.push_back({edges[first].root, edges[last].root, edges[first].from, edges[last].to});
-    };
-    for (std::size_t i = 0; i < n; ++i) {
-        if (continues[i] || done[i])
-            continue;
-        std::size_t last = i;
-        done[i] = 1;
-        while (next[last] != none && !done[next[last]]) {
-            last = next[last];
-            done[last] = 1;
-        }
-        emit(i, last);
-    }
-    for (std::size_t i = 0; i < n; ++i) // edges of a run with no start (none in a plane)
-        if (!done[i])
-            emit(i, i);
 }
 
 bool LinkSet::sees_whole(const Vec3& x, const Vec3& n, NodeRef p) const {
@@ -269,8 +110,8 @@ template <typename Fn> void LinkSet::for_each_contour_edge(NodeRef p, Fn&& fn) c
         return;
     }
     const std::uint32_t c = cluster_index(p);
-    for (std::uint32_t k = boundary_begin_[c]; k < boundary_begin_[c + 1]; ++k) {
-        const ContourEdge& e = boundary_[k];
+    for (std::uint32_t k = tables_->boundary_begin_[c]; k < tables_->boundary_begin_[c + 1]; ++k) {
+        const ContourEdge& e = tables_->boundary_[k];
         fn(h_.triangle[e.from_root][e.from], h_.triangle[e.to_root][e.to]);
     }
 }
@@ -280,13 +121,13 @@ double LinkSet::cut_form_factor(const Vec3& x, const Vec3& n, NodeRef p, const P
     if (!is_cluster(p))
         return form_factor_point_triangle(x, n, h_.triangle[p]);
     const std::uint32_t c = cluster_index(p);
-    if (root_end_[c] - root_begin_[c] > k_clip_roots) {
+    if (tables_->root_end_[c] - tables_->root_begin_[c] > k_clip_roots) {
         unresolved = true;
         return 0.0;
     }
     bool clipped = false;
     const double f = clipped_contour(x, n, c, plane.n, clipped);
-    return clipped ? f : root_form_factors(x, n, root_begin_[c], root_end_[c]);
+    return clipped ? f : root_form_factors(x, n, tables_->root_begin_[c], tables_->root_end_[c]);
 }
 
 // The part of a face cluster in front of x's tangent plane has for its boundary the parts of
@@ -312,8 +153,8 @@ double LinkSet::clipped_contour(const Vec3& x, const Vec3& n, std::uint32_t c, c
     if (!(dot(along, along) > 1e-12))
         return ok = false, 0.0;
     double sum = 0;
-    for (std::uint32_t k = boundary_begin_[c]; k < boundary_begin_[c + 1]; ++k) {
-        const ContourEdge& e = boundary_[k];
+    for (std::uint32_t k = tables_->boundary_begin_[c]; k < tables_->boundary_begin_[c + 1]; ++k) {
+        const ContourEdge& e = tables_->boundary_[k];
         const Vec3& a = h_.triangle[e.from_root][e.from];
         const Vec3& b = h_.triangle[e.to_root][e.to];
         const double ha = dot(a - x, n), hb = dot(b - x, n);
@@ -370,21 +211,8 @@ double LinkSet::root_form_factors(const Vec3& x, const Vec3& n, std::uint32_t be
                                   std::uint32_t end) const {
     double sum = 0;
     for (std::uint32_t k = begin; k < end; ++k)
-        sum += form_factor_point_triangle(x, n, h_.triangle[dfs_roots_[k]]);
+        sum += form_factor_point_triangle(x, n, h_.triangle[tables_->dfs_roots_[k]]);
     return sum;
-}
-
-Rgb LinkSet::face_mean(std::uint32_t c, const std::vector<Lobes>& lobes) const {
-    return lobe_projection(lobes[c], tree_->normal[c]) * float(1.0 / tree_->area[c]);
-}
-
-Rgb LinkSet::exact_source_radiosity(const ClusterLink& link, const Rgb& mean,
-                                    const std::vector<Slope>& gradient) const {
-    if (gradient.empty() || link.d.y == 0)
-        return mean;
-    const Rgb seen = mean + slope_along(gradient[cluster_index(link.source)],
-                                        exact_source_direction(link) * double(link.d.y));
-    return Rgb(std::max(seen.r, 0.0f), std::max(seen.g, 0.0f), std::max(seen.b, 0.0f));
 }
 
 void LinkSet::receiver_points(NodeRef q, int count, std::vector<WeightedPoint>& out) const {
@@ -398,18 +226,19 @@ void LinkSet::receiver_points(NodeRef q, int count, std::vector<WeightedPoint>& 
             out.push_back({at_barycentrics(t, bary[k]), 1.0 / double(m)});
         return;
     }
-    const std::uint32_t c = cluster_index(q), begin = root_begin_[c], end = root_end_[c];
-    const double lo = dfs_area_[begin], range = dfs_area_[end] - lo;
+    const std::uint32_t c = cluster_index(q), begin = tables_->root_begin_[c],
+                        end = tables_->root_end_[c];
+    const double lo = tables_->dfs_area_[begin], range = tables_->dfs_area_[end] - lo;
     if (end - begin <= std::uint32_t(count)) { // every root's rule (of 1 or 4 points), by area
         const bool four = 4 * (end - begin) <= std::uint32_t(count);
         std::array<std::array<double, 2>, k_max_quadrature_points> bary;
         std::size_t m = 0;
         quadrature_barycentrics(four ? 1 : 0, bary.data(), &m);
         for (std::uint32_t k = begin; k < end; ++k) {
-            const auto& t = h_.triangle[dfs_roots_[k]];
+            const auto& t = h_.triangle[tables_->dfs_roots_[k]];
             for (std::size_t i = 0; i < m; ++i)
-                out.push_back(
-                    {at_barycentrics(t, bary[i]), h_.area[dfs_roots_[k]] / range / double(m)});
+                out.push_back({at_barycentrics(t, bary[i]),
+                               h_.area[tables_->dfs_roots_[k]] / range / double(m)});
         }
         return;
     }
@@ -421,13 +250,14 @@ void LinkSet::receiver_points(NodeRef q, int count, std::vector<WeightedPoint>& 
         const double u1 = lo + double(s + 1) / double(count) * range;
         Vec3 sum;
         double weight = 0;
-        while (k < end && dfs_area_[k + 1] <= u0)
+        while (k < end && tables_->dfs_area_[k + 1] <= u0)
             ++k;
-        for (std::uint32_t j = k; j < end && dfs_area_[j] < u1; ++j) {
-            const double overlap = std::min(dfs_area_[j + 1], u1) - std::max(dfs_area_[j], u0);
+        for (std::uint32_t j = k; j < end && tables_->dfs_area_[j] < u1; ++j) {
+            const double overlap =
+                std::min(tables_->dfs_area_[j + 1], u1) - std::max(tables_->dfs_area_[j], u0);
             if (overlap <= 0)
                 continue;
-            sum += h_.centroid(dfs_roots_[j]) * overlap;
+            sum += h_.centroid(tables_->dfs_roots_[j]) * overlap;
             weight += overlap;
         }
         if (weight > 0)
@@ -439,30 +269,8 @@ Vec3 LinkSet::sample_point(NodeRef n, Pcg32& rng, const std::vector<double>& run
     if (!is_cluster(n))
         return sample_triangle(h_.triangle[n], rng.next_double(), rng.next_double());
     const std::size_t k = draw_root(cluster_index(n), rng.next_double(), running);
-    return sample_triangle(h_.triangle[dfs_roots_[k]], rng.next_double(), rng.next_double());
-}
-
-Vec3 LinkSet::node_centroid(NodeRef n) const {
-    return is_cluster(n) ? tree_->centroid[cluster_index(n)] : h_.centroid(n);
-}
-
-Vec3 LinkSet::exact_source_direction(const ClusterLink& link) const {
-    return planar_direction(link.source, link.receiver);
-}
-
-Vec3 LinkSet::planar_direction(NodeRef from, NodeRef toward) const {
-    if (!is_cluster(from))
-        return {};
-    const std::uint32_t c = cluster_index(from);
-    const Vec3 delta = node_centroid(toward) - tree_->centroid[c];
-    const Vec3& n = tree_->normal[c];
-    const Vec3 along = delta - n * dot(n, delta);
-    const double len = length(along);
-    // An end (nearly) straight above: what it sees of `from` is centred, not off along a
-    // direction.
-    if (!(len > k_min_slope_sine * length(delta)))
-        return {};
-    return along / len;
+    return sample_triangle(h_.triangle[tables_->dfs_roots_[k]], rng.next_double(),
+                           rng.next_double());
 }
 
 // The least-squares plane through the point form factors \p values at \p points over the
@@ -509,20 +317,14 @@ void LinkSet::fit_slope(ClusterLink& link, const std::vector<WeightedPoint>& poi
     link.d.x = float(2.0 * departure);
 }
 
-Vec3 LinkSet::exact_slope(const ClusterLink& link) const {
-    if (!is_cluster(link.receiver))
-        return {};
-    return exact_slope(link, Frame::from_normal(tree_->normal[cluster_index(link.receiver)]));
-}
-
 // By symmetry of the kernel, the part of source p that receiver q sees most of (the
 // F-weighted centroid of p over q) is the centroid of p's points weighted by their own point
 // form factors toward q: a quadrature over p, as over q for F.
 double LinkSet::seen_offset(NodeRef p, NodeRef q, const ExactEnd& end) const {
-    const Vec3 toward = planar_direction(p, q);
+    const Vec3 toward = tables_->planar_direction(p, q);
     if (dot(toward, toward) == 0)
         return 0.0;
-    const Vec3 m = node_centroid(p);
+    const Vec3 m = tables_->node_centroid(p);
     double sum = 0, moment = 0;
     for (std::size_t k = 0; k < end.points.size(); ++k) {
         const WeightedPoint& y = end.points[k];
@@ -624,7 +426,7 @@ ClusterLink LinkSet::make_exact_link(NodeRef q, NodeRef p) const {
     thread_local ExactEnd receiver, source;
     const int count = exact_point_count(q, p, pp);
     exact_end(q, p, pq, pp, count, receiver);
-    const Vec3 toward = planar_direction(p, q); // zero: the source sends its mean
+    const Vec3 toward = tables_->planar_direction(p, q); // zero: the source sends its mean
     const bool offset = is_cluster(p) && !receiver.unresolved && dot(toward, toward) > 0;
     if (offset) // a quarter as many points over the source suffice for where it is seen
         exact_end(p, q, pp, pq, std::max(4, count / 4), source);
@@ -682,7 +484,8 @@ void LinkSet::exact_visibility(ClusterLink& link, const Plane& pq, const Plane& 
     segments.clear();
     kernel.clear();
     for (int k = 0; k < 2 * rays && int(segments.size()) < rays; ++k) {
-        const Vec3 xq = sample_point(q, rng, dfs_area_), xp = sample_point(p, rng, dfs_exitance_);
+        const Vec3 xq = sample_point(q, rng, tables_->dfs_area_),
+                   xp = sample_point(p, rng, tables_->dfs_exitance_);
         const Vec3 w = xp - xq;
         const double d2 = dot(w, w);
         const double cq = dot(pq.n, w), cp = -dot(pp.n, w);
@@ -731,32 +534,14 @@ double LinkSet::exact_link_error(const ClusterLink& link, const std::vector<Rgb>
     double mean = 0, range = 0;
     if (is_cluster(p)) {
         const std::uint32_t c = cluster_index(p);
-        mean = double(lobe_projection((*exitance_)[c], tree_->normal[c]).max_component()) /
+        mean = double(lobe_projection((*tables_->exitance_)[c], tree_->normal[c]).max_component()) /
                tree_->area[c];
-        range = double((*departure_)[c]);
+        range = double((*tables_->departure_)[c]);
     } else {
         mean = double(b[p].max_component());
         range = double(b_range[p]);
     }
-    const double f = double(link.g), visible = double(link.visible());
-    // A receiver that cannot be split takes the mean of F over it whatever its source's
-    // parts: splitting the source would not lower the error of its one value.
-    const double spread = splittable(link.receiver, true) ? double(link.spread()) : 0.0;
-    const double estimate =
-        settings_.oracle == Oracle::bf ? f * visible * mean : spread * mean + f * visible * range;
-    // All rays blocked: n of them cannot tell 0 from about 1/n.
-    const double uncertain =
-        link.visible() > 0 || link.rays == 0 ? 0.0 : f * mean / double(link.rays);
-    // A partly occluded link gives its cluster receiver its mean visibility v everywhere,
-    // across the shadow: where that is sharp, v is off by 2 v (1 − v) on average. As with
-    // the spread, only splitting the receiver resolves that (2x2 office floor: 0.98 M links
-    // instead of 1.01 M, the elements' indirect irradiance 2.72 % off a 3x finer ε instead
-    // of 2.66 %).
-    const double shadow =
-        link.partial && is_cluster(link.receiver) && splittable(link.receiver, true)
-            ? k_shadow_weight * f * visible * (1.0 - visible) * mean
-            : 0.0;
-    return estimate * (link.partial ? 2.0 : 1.0) + uncertain + shadow;
+    return oracle::exact_link_error(settings_, link, mean, range, splittable(link.receiver, true));
 }
 
 } // namespace penumbra::solver

@@ -5,7 +5,6 @@
 #include "links/link_set.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <span>
 #include <tuple>
@@ -42,10 +41,13 @@ constexpr int k_twin_child[4] = {0, 2, 1, 3};
 
 } // namespace
 
-LinkSet::LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, const VisibilityQuery& visibility,
+LinkSet::LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, LinkStore& store,
+                 ClusterTables* tables, const VisibilityQuery& visibility,
                  const std::vector<PointLight>& lights, const Sun* sun, RefineSettings settings)
-    : h_(h), twin_(twin), visibility_(visibility), lights_(lights), sun_(sun), settings_(settings) {
-}
+    : h_(h), twin_(twin), store_(store), links_(store.links_), light_links_(store.light_links_),
+      offsets_(store.offsets_), cluster_links_(store.cluster_links_), tables_(tables),
+      tree_(tables ? tables->tree_ : nullptr), visibility_(visibility), lights_(lights), sun_(sun),
+      settings_(settings) {}
 
 Link LinkSet::make_link(std::uint32_t q, std::uint32_t p) const {
     if (centres_occluded(q, p)) // a plane between them proves them dark
@@ -68,19 +70,6 @@ Link LinkSet::reverse_link(const Link& l) const {
             triangle_form_factor_visible(a, b, quadrature_level_for(a, b, settings_.rows)).f_spread;
     }
     return {p, q, float(double(l.ff) * h_.area[q] / h_.area[p]), float(spread), l.partial()};
-}
-
-const Link* LinkSet::find_link(std::uint32_t receiver, std::uint32_t source,
-                               std::size_t sorted) const {
-    if (std::size_t(receiver) + 1 >= offsets_.size())
-        return nullptr; // a node made since the links were indexed
-    const auto begin = links_.begin() + offsets_[receiver];
-    const auto end = links_.begin() + offsets_[receiver + 1];
-    if (std::size_t(offsets_[receiver + 1]) > sorted)
-        return nullptr;
-    const auto it = std::lower_bound(begin, end, source,
-                                     [](const Link& l, std::uint32_t s) { return l.source < s; });
-    return it != end && it->source == source ? &*it : nullptr;
 }
 
 // Sorted by unordered pair, a pair linked both ways is two neighbours: its link from the
@@ -108,7 +97,7 @@ void LinkSet::make_pair_links(std::size_t first, bool indexed) {
             return; // made with the link before it
         const std::uint32_t q = pending[k].receiver, p = pending[k].source;
         if (k + 1 == pending.size() || !second[k + 1]) {
-            const Link* old = indexed ? find_link(p, q, first) : nullptr;
+            const Link* old = indexed ? store_.find_link(p, q, first) : nullptr;
             pending[k] = old ? reverse_link(*old) : make_link(q, p);
             return;
         }
@@ -169,14 +158,6 @@ LightLink LinkSet::make_sun_link(std::uint32_t q) const {
     const SunIrradiance s = sun_triangle_irradiance(*sun_, oriented(h_, q), settings_.offset,
                                                     h_.diagonal, q, 1, visibility_, settings_.rows);
     return {q, std::uint32_t(lights_.size()), s.irradiance, 0, std::uint8_t(s.partial ? 1 : 0)};
-}
-
-RgbD LinkSet::sun_power() const {
-    RgbD sum;
-    for (const LightLink& l : light_links_)
-        if (l.light == lights_.size())
-            sum += RgbD(l.irradiance) * h_.area[l.receiver];
-    return sum;
 }
 
 bool LinkSet::linkable(std::uint32_t q, std::uint32_t p) const {
@@ -256,20 +237,9 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         if (kept_[k])
             return;
         const Link& link = links_[k];
-        // Hanrahan et al.'s BF oracle: the irradiance the link brings, doubled when partly
-        // occluded (its visibility estimate is the least certain part).
-        const double b_source = double(b[link.source].max_component());
         const double aq = h_.area[link.receiver], ap = h_.area[link.source];
-        // A receiver at the minimum area takes the mean of F over it whatever the source's
-        // parts: splitting the source would not lower the error of its one value.
-        const double spread = aq > settings_.min_area ? double(link.spread()) : 0.0;
-        const double estimate = (settings_.oracle == Oracle::bf
-                                     ? double(link.ff) * b_source
-                                     : spread * b_source + double(link.ff) * b_range[link.source]) *
-                                (link.partial() ? 2.0 : 1.0);
-        if (estimate <= settings_.threshold)
-            return;
-        if (std::max(aq, ap) <= settings_.min_area)
+        if (!oracle::refine_element_link(settings_, link, double(b[link.source].max_component()),
+                                         double(b_range[link.source]), aq, ap))
             return;
         decision[k] = aq >= ap ? split_receiver : split_source;
     });
@@ -323,10 +293,7 @@ bool LinkSet::refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range
     std::vector<std::uint8_t> split(light_links_.size(), 0);
     parallel_for_index(light_links_.size(), 256, [&](std::size_t k) {
         const LightLink& l = light_links_[k];
-        const double e = settings_.oracle == Oracle::bf ? double(l.irradiance.max_component())
-                                                        : double(l.spread);
-        split[k] =
-            (l.partial || e > settings_.threshold) && h_.area[l.receiver] > settings_.min_area;
+        split[k] = oracle::refine_light_link(settings_, l, h_.area[l.receiver]);
     });
     if (std::none_of(split.begin(), split.end(), [](std::uint8_t s) { return s != 0; }))
         return false;
@@ -373,7 +340,7 @@ bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range,
         report("light");
     }
     if (tree_)
-        weigh_sources(b);
+        tables_->weigh_sources(b);
     const std::size_t first_pending = links_.size();
     while (tree_ && refine_cluster_pass(b, b_range)) {
         changed = true;
@@ -390,64 +357,6 @@ bool LinkSet::refine(std::vector<Rgb>& b, std::vector<float>& b_range,
     kept_ = {};
     cluster_kept_ = {};
     return changed;
-}
-
-namespace {
-
-// Permutes \p v in place so that bucket(v[i]) does not decrease, bucket b taking
-// [start[b], start[b + 1]) (American flag sort: one swap puts a link in its bucket for good).
-template <typename Bucket>
-void flag_permute(std::span<Link> v, std::span<const std::uint32_t> start, Bucket bucket) {
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (std::size_t b = 0; b + 1 < start.size(); ++b)
-        while (next[b] < start[b + 1]) {
-            const std::size_t k = bucket(v[next[b]]);
-            if (k == b)
-                ++next[b];
-            else
-                std::swap(v[next[b]], v[next[k]++]);
-        }
-}
-
-} // namespace
-
-// By receiver, then source, in place (no second copy of what is most of a big solve's
-// memory): an American flag sort on the receiver's high bits (at most 1024 buckets, whose
-// write positions stay in cache), then on the rest within each such bucket in parallel, then
-// each receiver's few links by source (a receiver links to a source once).
-void LinkSet::sort_and_index() {
-    offsets_.assign(h_.size() + 1, 0);
-    for (const Link& l : links_)
-        ++offsets_[l.receiver + 1];
-    for (std::size_t n = 0; n < h_.size(); ++n)
-        offsets_[n + 1] += offsets_[n];
-    if (!links_.empty())
-        sort_links();
-    if (tree_)
-        index_cluster_links();
-}
-
-void LinkSet::sort_links() {
-    const int shift = std::max(0, int(std::bit_width(h_.size())) - 10);
-    const std::size_t tops = ((h_.size() - 1) >> shift) + 1;
-    std::vector<std::uint32_t> top_start(tops + 1);
-    for (std::size_t t = 0; t <= tops; ++t)
-        top_start[t] = offsets_[std::min(h_.size(), t << shift)];
-    flag_permute(links_.span(), top_start, [shift](const Link& l) { return l.receiver >> shift; });
-    parallel_for_index(tops, 1, [&](std::size_t t) {
-        const std::size_t first = t << shift, last = std::min(h_.size(), (t + 1) << shift);
-        std::vector<std::uint32_t> start(offsets_.begin() + std::ptrdiff_t(first),
-                                         offsets_.begin() + std::ptrdiff_t(last) + 1);
-        const std::uint32_t base = start.front();
-        for (std::uint32_t& x : start)
-            x -= base;
-        flag_permute(links_.span().subspan(base, start.back()), start,
-                     [first](const Link& l) { return l.receiver - first; });
-    });
-    parallel_for_index(h_.size(), 256, [&](std::size_t q) {
-        std::sort(links_.begin() + offsets_[q], links_.begin() + offsets_[q + 1],
-                  [](const Link& a, const Link& b) { return a.source < b.source; });
-    });
 }
 
 } // namespace penumbra::solver

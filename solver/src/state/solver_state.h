@@ -12,7 +12,7 @@
 #include "core/mesh.h"
 #include "hierarchy/hierarchy.h"
 #include "hierarchy/leaf_weights.h"
-#include "links/link_set.h"
+#include "links/link_store.h"
 #include "solver/solver.h"
 
 namespace penumbra::solver {

@@ -40,7 +40,7 @@ bool same_bits(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Rgb)) == 0;
 }
 
-class HierarchicalSystemSources : public ::testing::TestWithParam<std::string> {};
+class HierarchicalSystemSources : public ::testing::TestWithParam<Clustering> {};
 
 TEST_P(HierarchicalSystemSources, SolvesAreLinearAndRepeatable) {
     Scene scene = test::cornell_box(0.25);
@@ -94,7 +94,11 @@ TEST_P(HierarchicalSystemSources, SolvesAreLinearAndRepeatable) {
     EXPECT_TRUE(same_bits(first.h_indirect, again.h_indirect));
 }
 
-INSTANTIATE_TEST_SUITE_P(Clustering, HierarchicalSystemSources, ::testing::Values("off", "on"));
+INSTANTIATE_TEST_SUITE_P(Clustering, HierarchicalSystemSources,
+                         ::testing::Values(Clustering::off, Clustering::on),
+                         [](const ::testing::TestParamInfo<Clustering>& info) {
+                             return std::string(enum_name(info.param));
+                         });
 
 } // namespace
 } // namespace penumbra

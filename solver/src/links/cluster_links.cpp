@@ -20,8 +20,7 @@
 // Before that, a link whose first rays were all blocked is offered to the planes they hit
 // (visibility/occluders.h): a plane with the link's ends on its two sides whose surfaces cover the
 // shaft's cross-section proves it dark, and the link is dropped. On the office floors most
-// blocked links cross a partition (the 32k floor's first refinement: 2.6 M cluster links and
-// 138 M rays before, 1.0 M links and 20 M rays with the certificates).
+// blocked links cross a partition (docs/calibration.md#occlusion-certificates).
 
 #include <algorithm>
 #include <cmath>
@@ -41,25 +40,16 @@ namespace {
 
 constexpr int k_cluster_rays = 4;
 /// A cluster link is kept only while the bounding spheres' radii sum to less than this times
-/// the distance between the centres (a multipole method's admissibility). Measured on the
-/// 2k office floor against 128 area-drawn rays per link: links with radii of 1–2 × the
-/// distance carried 3 % (cluster pairs) to 30 % (cluster–element) of their true transfer (their
-/// four rays, between points that face the other centre, see little of what the parts
-/// exchange); with this bound the links' summed model transfer is 0.97 of the true one.
+/// the distance between the centres (a multipole method's admissibility): closer pairs' four
+/// rays, between points that face the other centre, see little of what the parts exchange
+/// (docs/calibration.md#k_admissible).
 constexpr double k_admissible = 0.5;
 /// The reflected light a cluster link brings is weighed against this many times the threshold
 /// of its direct light (what its source emits): reflected light is smooth, and direct light
-/// is what the vertices' far part shows. With face clusters and calibrated kernels, on the
-/// 2x1-office floor of tessellation 5: 5.63 M links at 3, 4.65 M at 5, 3.64 M at 10 (1 at
-/// first: 8.9 M); the lamp room's power error at ε = 3e-3 is 0.11 / 0.17 / 0.26 %, two
-/// sealed rooms take 2.08 / 2.10 / 2.16 × one room's links, and the hall's vertex direct
-/// light stays at 0.61 %.
+/// is what the vertices' far part shows (docs/calibration.md#k_reflected_slack).
 constexpr double k_reflected_slack = 5.0;
 /// The same for exact links (all their light is reflected), whose receivers take the plane
-/// of their form factor (links/exact_links.cpp). When it was chosen (with a partly occluded
-/// link's whole transfer counted 4 times as its shadow error), on the 2x2 office floor of
-/// tessellation 5 at 5 / 7.5 / 10: 3.76 / 3.66 / 3.09 M links; the lamp room's power error at
-/// ε = 3e-3 was 0.13 / 0.17 / 0.27 %, its sensors within 0.44 / 0.54 / 0.77 % of all pairs'.
+/// of their form factor (links/exact_links.cpp; docs/calibration.md#k_exact_slack).
 constexpr double k_exact_slack = 7.5;
 
 /// Whether a pair of ends whose centres are \p r apart and whose bounding radii sum to
@@ -70,11 +60,8 @@ bool admissible(double r, double radii) {
 constexpr int k_facing_tries = 8;
 /// Largest factor the true cosines may scale a cluster link's kernel by (cast_cluster_rays).
 constexpr double k_max_calibration = 4.0;
-/// Rays a link all of whose rays were blocked may get before the oracle splits it instead.
-/// On the 2x2 office floor of tessellation 5 at min area 0.244 m², against a solve at a 3x
-/// finer ε, at 32 / 64 / 128 / 256: 9.4 / 9.9 / 10.9 / 11.1 s, 44 / 47 / 50 / 54 M rays,
-/// the elements' indirect irradiance 2.70 / 2.63 / 2.61 / 2.61 % off, its mean 0.9910 /
-/// 0.9923 / 0.9927 / 0.9927 of the reference's (the bias of links taken as dark).
+/// Rays a link all of whose rays were blocked may get before the oracle splits it instead:
+/// more rays cost time and change little (docs/calibration.md#k_max_cluster_rays).
 constexpr int k_max_cluster_rays = 64;
 /// An all-blocked link's rays traced to their first hits before the rest (certified_blocked).
 constexpr std::size_t k_first_certifying_rays = 4;
@@ -183,7 +170,8 @@ std::size_t LinkSet::draw_root(std::uint32_t c, double u,
     // The first root whose running sum passes x: in [lo, hi) of running. Roots' weights vary
     // smoothly in depth-first order, so the search gallops out from where x would be were
     // they equal: a binary search over a large cluster's range missed the cache at most
-    // steps (draw_root and its caller took a tenth of the 4x4 proxy's solve).
+    // steps (draw_root and its caller took a tenth of the proxy's solve;
+    // docs/calibration.md#speed).
     const std::size_t n = end - begin;
     if (n <= 1)
         return begin;
@@ -289,8 +277,8 @@ ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
 // pair of near planar clusters (a floor and a wall by their common edge) travels at other
 // angles: g is scaled by the open rays' mean true kernel cos_q cos_p / (π d²) over their mean
 // 1/(π d²) times their mean product of the model's cosines (at most k_max_calibration, where
-// the centres' direction grazes an end). With planar clusters, the lamp room's power error at
-// ε = 3e-3 falls from 0.74 % to 0.11 % (0.34 % with the volume clusters of before).
+// the centres' direction grazes an end). With planar clusters this cuts the power error of a
+// closed room several times (docs/calibration.md#calibrated-lobe-kernels).
 bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     const NodeRef q = link.receiver, p = link.source;
     const Vec3 cq = node_centre(q), cp = node_centre(p);
@@ -564,8 +552,7 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
         // A link kept by an earlier pass of this refine() got the rays it asked for then (but
         // for draws that found no facing surface, made up at the next refine()), and the
         // radiosities have not changed since: every pass walked every link here (80 M
-        // links, about 30 passes a cycle on the 1M floor). 4x4 proxy: 40.5 s instead of 42.0,
-        // 180 links of 4.5 M differ.
+        // links, about 30 passes a cycle on the 1M floor; docs/calibration.md#speed).
         ClusterLink& l = cluster_links_[k];
         if (cluster_kept_[k] || l.self || l.exact || l.visible() > 0 || l.rays == 0 ||
             l.rays >= k_max_cluster_rays)

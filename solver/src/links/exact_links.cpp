@@ -12,13 +12,12 @@
 // no power), and a cluster source sends the value of the linear fit of its radiosity
 // (planar_gradients) at the part of it the receiver sees most of (seen_offset). With one
 // value per end, the wall beside a floor split their link until the floor's gradient was
-// resolved (the 2x2 office floor took 4.06 M links, 3.66 M with the planes) and the lamp
-// room's sensors read up to 1.2 % off the all-pairs solve (0.54 % with them).
+// resolved, and took more links for a less accurate solve (docs/calibration.md#exact-links).
 //
 // Without exact links, a wall tessellated into 50 triangles and the floor beside it (each a face
 // cluster) are too close for a point model (the lobe links' admissibility), so every pair of
-// their roots gets a link: on a 2x2 office floor of tessellation 5 that made 8.8 M links
-// where the same floor of untessellated rectangles takes 133 k at the same ε.
+// their roots gets a link: a tessellated floor took 66 times the links of the same floor
+// of untessellated rectangles (docs/calibration.md#exact-links).
 
 #include <algorithm>
 #include <cmath>
@@ -51,13 +50,9 @@ constexpr double k_near_gap = 0.5;
 /// source's normal gives no offset (planar_direction, seen_offset).
 constexpr double k_min_slope_sine = 0.05;
 /// A partly occluded exact link to a cluster receiver counts this many times F · B v (1 − v)
-/// as error (exact_link_error; 4 times the mean error of its visibility over a sharp shadow).
-/// Without it the ceiling of the lamp room, shadowed by the lamp 1 cm below it, took light
-/// its clusters' mean visibility gave it and sent it into the lamp's back (its power error
-/// at ε = 1e-2 was −0.65 %, −0.36 % with it). Counting 4 F B v instead (the whole transfer,
-/// whatever the shadow's share) split links whose shadow was a sliver: the 2x2 office floor
-/// took 2.22 M links rather than 2.03 M, and the lamp room's power error at ε = 3e-3 was
-/// 0.19 % rather than 0.03 %.
+/// as error (exact_link_error; 4 times the mean error of its visibility over a sharp shadow):
+/// without it a ceiling shadowed by a lamp just below it takes light its clusters' mean
+/// visibility gives it (docs/calibration.md#k_shadow_weight).
 constexpr double k_shadow_weight = 8.0;
 
 } // namespace
@@ -469,8 +464,7 @@ Vec3 LinkSet::planar_direction(NodeRef from, NodeRef toward) const {
 // receiver's plane (in its frame, exact_slope), scaled toward the mean where it would fall
 // below 0 over the receiver's bounds; the spread becomes twice the largest departure from
 // it. A wall lights the floor beside it by a steep gradient across the floor: the spread of
-// a constant split such links where a plane fits (the 2x2 office floor of tessellation 5
-// took 4.06 M links with the constant).
+// a constant split such links where a plane fits (docs/calibration.md#exact-links).
 void LinkSet::fit_slope(ClusterLink& link, const std::vector<WeightedPoint>& points,
                         const std::vector<double>& values, double f) const {
     const std::uint32_t c = cluster_index(link.receiver);
@@ -544,20 +538,16 @@ int LinkSet::exact_point_count(NodeRef q, NodeRef p, const Plane& pp) const {
     // A receiver that straddles the source's plane, or whose gap to the source is small
     // against its size, takes the finest points (4 per root): fewer do not resolve the cut,
     // or the steep part of F by a common edge (a wall and the floor it stands on got a
-    // twentieth of their form factor from cluster centroids; the perpendicular squares of
-    // ExactLinks.FormFactorMatchesAnalyticRectangles get it within 0.04 % from these). Such
-    // receivers were split at once before: the 2x2 office floor took 2.87 M links, 2.22 M
-    // without.
+    // twentieth of their form factor from cluster centroids). Such receivers are no longer
+    // split at once (docs/calibration.md#k_exact_points).
     const double eps = 1e-9 * h_.diagonal;
     bool fine = false;
     for_each_corner(q, [&](const Vec3& v) { fine = fine || dot(pp.n, v) - pp.d < -eps; });
     fine = fine || (is_cluster(q) && box_gap(q, p) < k_near_gap * node_radius(q));
     if (fine)
         return k_exact_points;
-    // Otherwise by the receiver's diameter over the distance. 64 points rather than 128
-    // between 0.4 and 1 (most of the points were there): the 2x2 office floor solved in
-    // 6.99 s instead of 7.47, its roots' radiosities 1.029 % off a solve at a tenth of ε
-    // (area-weighted) instead of 1.020 % (32 points: 6.77 s, 1.058 %).
+    // Otherwise by the receiver's diameter over the distance; 64 points rather than 128
+    // between 0.4 and 1, where most of the points were (docs/calibration.md#k_exact_points).
     const double r = length(node_centre(p) - node_centre(q));
     const double ratio = 2.0 * node_radius(q) / std::max(r, 1e-300);
     return ratio < 0.1 ? 4 : ratio < 0.4 ? 16 : ratio < 1.0 ? 64 : k_exact_points;
@@ -699,7 +689,7 @@ void LinkSet::exact_visibility(ClusterLink& link, const Plane& pq, const Plane& 
     }
     // Occlusion rays, which stop at any hit; a link all of whose rays are blocked traces them
     // again to their first hits, the planes that may prove it dark (a sixth of the office
-    // floors' exact links: the proxy solved in 30.1 s instead of 31.3 s, the same links).
+    // floors' exact links; docs/calibration.md#occlusion-certificates).
     blocked.resize(segments.size());
     visibility_.occluded(segments, blocked);
     double all = 0, open = 0;
@@ -749,9 +739,7 @@ double LinkSet::exact_link_error(const ClusterLink& link, const std::vector<Rgb>
         link.visible() > 0 || link.rays == 0 ? 0.0 : f * mean / double(link.rays);
     // A partly occluded link gives its cluster receiver its mean visibility v everywhere,
     // across the shadow: where that is sharp, v is off by 2 v (1 − v) on average. As with
-    // the spread, only splitting the receiver resolves that (2x2 office floor: 0.98 M links
-    // instead of 1.01 M, the elements' indirect irradiance 2.72 % off a 3x finer ε instead
-    // of 2.66 %).
+    // the spread, only splitting the receiver resolves that (docs/calibration.md#k_shadow_weight).
     const double shadow =
         link.partial && is_cluster(link.receiver) && splittable(link.receiver, true)
             ? k_shadow_weight * f * visible * (1.0 - visible) * mean

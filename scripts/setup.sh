@@ -27,6 +27,7 @@ PACKAGES=(
     libgtest-dev libgmock-dev
     libbenchmark-dev
     xvfb xauth
+    clang-format
 )
 
 need_install() {

@@ -44,8 +44,8 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
                                   double unconverged_fraction, const RgbD& sun_delivered) {
     PowerBalance pb;
     // Many leaves: their sum averages the noise out. 16 rays each up to 2^18 leaves, then
-    // about as many rays in all (down to 4 each): the 1M floor's 2.6 M leaves took 9 s with
-    // 16. A multiple of 4, so that each of a leaf's 4 quadrature points starts as many.
+    // about as many rays in all (down to 4 each; docs/calibration.md#k_escape_budget). A
+    // multiple of 4, so that each of a leaf's 4 quadrature points starts as many.
     RowSettings escape_rows = rows;
     constexpr std::size_t k_escape_budget = std::size_t(16) << 18;
     const std::size_t per_leaf = k_escape_budget / std::max<std::size_t>(mesh.element_count(), 1);

@@ -1,4 +1,4 @@
-// Results must not depend on the thread count (shared/STYLE.md §2.9–2.10): the Cornell box
+// Results must not depend on the thread count (core/parallel.h, core/rng.h): the Cornell box
 // baked with 1, 2 and 4 threads gives bitwise identical arrays.
 
 #include <cstring>

@@ -1,5 +1,5 @@
 // End-to-end validation of the bake pipeline (mesher → solver → sensors) against analytic
-// values. Numbers come from shared/validation/README.md, section given at each test.
+// values. Numbers come from docs/validation.md, section given at each test.
 // Ambient term off everywhere.
 
 #include <algorithm>
@@ -20,7 +20,7 @@ using test::add_material;
 using test::add_rect;
 
 // These tests validate the progressive shooting solver (issue #3); the hierarchical solver
-// has its own in hierarchical_test.cpp, and runs CIE 171 5.8 here too.
+// has its own in tests/solver/hierarchical_test.cpp, and runs CIE 171 5.8 here too.
 app::BakeResult bake_no_render(Scene scene, int threads = 0,
                                const std::string& method = "shooting") {
     scene.solver.method = *parse_enum<SolverMethod>(method);
@@ -220,7 +220,7 @@ TEST(Cie171AreaSource, DirectIlluminanceAtSensors) {
     for (std::size_t i = 0; i < 10; ++i) {
         const double exact = i < 4 ? floor_lx[i] : wall_lx[i - 4];
         const Sensor& s = scene.sensors[i];
-        // The README's exact values are rounded to 0.01 lx; allow that on top of 0.1 %.
+        // docs/validation.md's exact values are rounded to 0.01 lx; allow that on top of 0.1 %.
         EXPECT_NEAR(r.sensors[i].illuminance_direct_lx, exact, 0.001 * exact + 0.005)
             << s.name << " sensor " << i;
         auto interpolated =

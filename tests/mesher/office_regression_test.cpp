@@ -1,4 +1,4 @@
-// The mesh of small generated office floors (bench/office_scene.h) against figures recorded
+// The mesh of small generated office floors (tests/support/office_scene.h) against figures recorded
 // before the mesher was made to scale (linear assembly and manifold check, source culling
 // in the enclosure test, ordered BVH traversal): the same elements, vertices, patches and
 // areas, as input and with contact splitting and hidden regions. Also the mesh does not

@@ -1,4 +1,4 @@
-// Analytic kernels against closed forms (shared/validation/README.md §1).
+// Analytic kernels against closed forms (docs/validation.md §1).
 
 #include "kernels/form_factor.h"
 

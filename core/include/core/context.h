@@ -1,6 +1,6 @@
 #pragma once
 // The context every module entry point takes: logger sink, progress/cancel callback, thread
-// count and master seed. It replaces globals (shared/STYLE.md §2.4).
+// count and master seed. It replaces globals: library code logs through it, never to stdout.
 
 #include <cstdint>
 #include <functional>

@@ -1,6 +1,7 @@
 #pragma once
-// The error hierarchy (shared/STYLE.md §2.12). Messages are one line: what failed, where,
-// and what to try.
+// The error hierarchy, thrown at module boundaries and in setup code (never per sample or per
+// link), caught once in the CLI's main. Messages are one line: what failed, where, and what
+// to try.
 
 #include <stdexcept>
 #include <string>

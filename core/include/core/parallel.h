@@ -1,6 +1,7 @@
 #pragma once
 // TBB names the project uses, and the helper that runs work in an arena sized from the
-// context (shared/STYLE.md §2.9). Modules never start raw threads.
+// context. Modules never start raw threads, and results never depend on the thread count: no
+// floating-point atomics, each output has one owner or partial sums combine in a fixed order.
 
 #include <cstddef>
 #include <utility>

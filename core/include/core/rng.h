@@ -1,6 +1,7 @@
 #pragma once
 // PCG32 (O'Neill 2014) and a 64-bit mixing hash. Every random decision draws from a stream
-// named by content (purpose, ids, seed), never by thread or time (shared/STYLE.md §2.10).
+// named by content (purpose, ids, seed), never by thread or time, so results do not depend on
+// the thread count or the scheduling.
 
 #include <cstdint>
 #include <initializer_list>

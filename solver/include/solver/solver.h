@@ -1,6 +1,11 @@
 #pragma once
-// Solver v1: progressive refinement radiosity by shooting (Cohen et al. 1988, Southwell
-// iteration) with analytic polygon form factors times ray-traced visibility.
+// The radiosity solver: the light every mesh element reflects, from the scene's emissive
+// polygons, point lights and sun. By default hierarchical radiosity (Hanrahan et al. 1991,
+// with clusters: solver/src/hierarchical.cpp), which refines the mesh elements and the links
+// between them until the refinement oracle is under ε; the fixed-element methods (progressive
+// shooting, Jacobi, Gauss–Seidel, a dense matrix solve) solve on the mesh as it is. Form
+// factors are analytic polygon form factors times ray-traced visibility (core/visibility.h);
+// docs/architecture.md shows the solver's parts.
 
 #include <cstdint>
 #include <functional>

@@ -73,9 +73,8 @@ bool in_front(const OrientedTriangle& a, const OrientedTriangle& b, double eps);
 /// Pairs whose centroids are closer than this many times the sum of their longest edges need
 /// the fine rule: there F(x → b) varies fast over a (log-singular next to a shared edge) and
 /// the coarse rule breaks reciprocity. Beyond it the rule follows a's size over the distance
-/// (quadrature_level_for). 2 before: the validation results moved by less than their
-/// tolerances (lamp room power error 0.143 → 0.137 %, re-solve against a full solve 7.6e-5 →
-/// 1.0e-4), the 32k office floor solved in 89 s instead of 96.
+/// (quadrature_level_for). 1 rather than 2: the validation results stay within their
+/// tolerances, and solves are faster (docs/calibration.md#k_near_factor).
 inline constexpr double k_near_factor = 1.0;
 
 /// True if a and b are near in the sense of k_near_factor.

@@ -1,9 +1,8 @@
 #pragma once
 // A growable array of trivially copyable elements in an anonymous mapping of its own: growing
 // it remaps its pages (mremap) where std::vector copies its elements to a new block, so the
-// element links of a big solve (most of its memory) never stand in memory twice. With a
-// vector, the first refinement of the 1M proxy floor peaked at 1008 MB for 827 MB of steady
-// state, at the moment its links outgrew their block.
+// element links of a big solve (most of its memory) never stand in memory twice, as they did
+// at the moment a vector's links outgrew their block (docs/calibration.md#mappedarray).
 
 #include <sys/mman.h>
 #include <unistd.h>

@@ -107,7 +107,7 @@ TEST(HierarchicalIterations, AgreeWithRefinementAndClusters) {
     }
 }
 
-// Furnace (shared/validation/README.md §1): B = E / (1 − ρ) at every leaf, within 0.5 %.
+// Furnace (docs/validation.md §2): B = E / (1 − ρ) at every leaf, within 0.5 %.
 class IterationFurnace : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(IterationFurnace, UniformEmissionAndReflectance) {

@@ -1,6 +1,6 @@
 #pragma once
-// Generated open-plan office floors for the benchmarks (issues #4 and #5): nx × ny offices
-// with partitions (one door each), desks on legs, cabinets, windows cut into the exterior
+// Generated open-plan office floors for the tests and benchmarks (issues #4 and #5): nx × ny
+// offices with partitions (one door each), desks on legs, cabinets, windows cut into the exterior
 // walls and a ceiling panel light per office. Every rectangle can be pre-tessellated into
 // k × k quads, as exported CAD models are, so the input triangle count can be dialled from
 // about a thousand to millions.

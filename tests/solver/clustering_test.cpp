@@ -1,6 +1,6 @@
 // Issue #4: clustering for hierarchical radiosity (solver/src/hierarchy/cluster_tree.h): light
 // exchanged through cluster links keeps the closed-box furnace and agrees with the unclustered
-// solve. Reference values: shared/validation/README.md §furnace.
+// solve. Reference values: docs/validation.md §2.
 
 #include <cmath>
 #include <cstring>
@@ -234,7 +234,7 @@ TEST(Clustering, SealedNeighbourAddsAboutItsOwnLinks) {
             << "sensor " << s;
 }
 
-// Issue #4: on the generated office floors (bench/office_scene.h), links at 8 000 input
+// Issue #4: on the generated office floors (tests/support/office_scene.h), links at 8 000 input
 // triangles over links at 2 000 is at most 5: with clusters the links grow about linearly.
 TEST(Clustering, LinksGrowAboutLinearlyOnOfficeFloors) {
     std::uint64_t links[2] = {0, 0};

@@ -1,5 +1,5 @@
 // Issue #4: hierarchical radiosity and the fixed-element methods, end to end through the
-// pipeline. Reference values: shared/validation/README.md (sections given per test).
+// pipeline. Reference values: docs/validation.md (sections given per test).
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Issue #4: exact links between face clusters (solver/src/links/exact_links.cpp): their form
-// factor against the analytic rectangle values (shared/validation/README.md §1), the plane
+// factor against the analytic rectangle values (docs/validation.md §1), the plane
 // their receiver takes against the point form factors, the radiosity their source sends
 // against a gather from its roots, and the sloped push that spreads their light.
 

@@ -1,13 +1,16 @@
 // Hierarchical radiosity (Hanrahan, Salzman & Aupperle 1991). Every mesh element is the root
-// of a 1-to-4 hierarchy; links between nodes are refined by the BF oracle (the irradiance a
-// link brings, F_qp B_p, against ε × the brightest source's exitance, partly occluded links
-// counted double) down to a minimum area; a Jacobi gathering sweep over the links is followed by
-// push-pull over the hierarchy (irradiance gathered at a node applies to all its descendants;
-// radiosity is pulled up as the area mean). Reflectors have no radiosity before the first solve, so
-// refinement and solving alternate until refinement changes nothing, or next to nothing.
+// of a 1-to-4 hierarchy; links between nodes are refined by the oracle of solver.oracle
+// (oracle/oracle.h; by default "variation": ΔF·B_p + F_qp·ΔB_p, the spread of the form factor
+// over the receiver times the source's radiosity plus the form factor times the range of
+// radiosity over the source; "bf": F_qp B_p, the irradiance the link brings) against ε × the
+// brightest source's exitance, partly occluded links counted double, down to a minimum area;
+// a Jacobi gathering sweep over the links is followed by push-pull over the hierarchy
+// (irradiance gathered at a node applies to all its descendants; radiosity is pulled up as the
+// area mean). Reflectors have no radiosity before the first solve, so refinement and solving
+// alternate until refinement changes nothing, or next to nothing.
 //
 // Deviations: form factors are receiver-side quadratures of the analytic point-to-triangle
-// form factor (4 points, 64 for near pairs) times ray visibility, rather than Hanrahan's
+// form factor (4 points, up to 64 for near pairs) times ray visibility, rather than Hanrahan's
 // disc approximation; front and back sides subdivide together so that leaves stay twins; a
 // link's irradiance is pushed to the leaves of its receiver, and its source's radiosity pulled
 // from the leaves of its source, by each leaf's own form factors to the link's far ends rather

@@ -18,16 +18,13 @@ namespace {
 
 constexpr int k_max_cycles = 12;
 /// Refine → solve cycles stop once a refinement grows the links and the nodes by less than
-/// this fraction. On the 2x2 office floor of tessellation 5 the fourth and fifth refinements
-/// grew the links by 0.26 % and 0.01 % (the fifth, with its sweep, changed the solution by
-/// 3e-4 of the emitted power): at 1e-3 both ran, at 5e-3 the fourth is the last.
+/// this fraction: later ones change the solution by next to nothing
+/// (docs/calibration.md#k_settled_growth).
 constexpr double k_settled_growth = 5e-3;
 
 /// A cycle whose refinement is not the last sweeps to this many times solver.residual: the
-/// next refinement asks its radiosities for no more than the oracle's error estimates. On the
-/// 2x2 office floor of tessellation 5 at 1 / 4 / 10: 27 / 22 / 20 sweeps, 975 315 / 974 714 /
-/// 973 182 links, the roots' radiosities 1.008 / 1.022 / 1.030 % off a solve at ε = 1e-4
-/// (area-weighted), their mean 0.99707 / 0.99671 / 0.99652 of its.
+/// next refinement asks its radiosities for no more than the oracle's error estimates
+/// (docs/calibration.md#k_intermediate_residual).
 constexpr double k_intermediate_residual = 4.0;
 
 bool settled(std::size_t before, std::size_t after) {
@@ -47,10 +44,8 @@ constexpr std::size_t k_clustering_auto_roots = 3000;
 /// rows of the other methods, take 64). A hierarchical pair is computed once, from its
 /// smaller end, and its other link follows by reciprocity, so the fine rule is not needed to
 /// keep the two reciprocal as in rows; what it resolves is the steep part of the form factor
-/// by a common edge. Against 64: the lamp room's power error 0.097 -> 0.077 %, the Cornell
-/// box's against the matrix solve 0.0279 -> 0.0281 at eps 1e-3, the closed 3x3 office floor
-/// with contact splitting +0.39 -> +0.43 % of its power in 9.9 s instead of 12.8, the 1M
-/// proxy 107 -> 98 s. All near pairs at 16 points fail the furnace (0.59-0.68 %).
+/// by a common edge. About as accurate as 64 points, and faster; touching pairs at 16 fail
+/// the furnace (docs/calibration.md#k_apart_level).
 constexpr int k_apart_level = 2;
 
 double emitted_power_max(const Hierarchy& h, const std::vector<PointLight>& lights) {
@@ -215,9 +210,8 @@ bool run_cycle(HierarchicalSystem& sys, LinkSet& refiner, const Scene& scene, co
     const double weights_s = seconds_since(t0);
     t0 = Clock::now();
     // A refinement that changed nothing, or added next to nothing, is the last: the
-    // solution after it stays where the next one would leave it (on the 128k office
-    // floor, cycles 5 to 11 took 26–40 s each for 0.01 % more links). The cycles before
-    // it sweep to a looser residual.
+    // solution after it stays where the next one would leave it (k_settled_growth). The
+    // cycles before it sweep to a looser residual.
     const bool last = cycle + 1 == k_max_cycles ||
                       (cycle > 0 && (!changed || (settled(links_before, sys.links.link_count()) &&
                                                   settled(nodes_before, h.size()))));

@@ -20,8 +20,7 @@
 // Before that, a link whose first rays were all blocked is offered to the planes they hit
 // (visibility/occluders.h): a plane with the link's ends on its two sides whose surfaces cover the
 // shaft's cross-section proves it dark, and the link is dropped. On the office floors most
-// blocked links cross a partition (the 32k floor's first refinement: 2.6 M cluster links and
-// 138 M rays before, 1.0 M links and 20 M rays with the certificates).
+// blocked links cross a partition (docs/calibration.md#occlusion-certificates).
 
 #include <algorithm>
 #include <cmath>
@@ -123,7 +122,8 @@ std::size_t LinkSet::draw_root(std::uint32_t c, double u,
     // The first root whose running sum passes x: in [lo, hi) of running. Roots' weights vary
     // smoothly in depth-first order, so the search gallops out from where x would be were
     // they equal: a binary search over a large cluster's range missed the cache at most
-    // steps (draw_root and its caller took a tenth of the 4x4 proxy's solve).
+    // steps (draw_root and its caller took a tenth of the proxy's solve;
+    // docs/calibration.md#speed).
     const std::size_t n = end - begin;
     if (n <= 1)
         return begin;
@@ -229,8 +229,8 @@ ClusterLink LinkSet::make_cluster_link(NodeRef q, NodeRef p) const {
 // pair of near planar clusters (a floor and a wall by their common edge) travels at other
 // angles: g is scaled by the open rays' mean true kernel cos_q cos_p / (π d²) over their mean
 // 1/(π d²) times their mean product of the model's cosines (at most k_max_calibration, where
-// the centres' direction grazes an end). With planar clusters, the lamp room's power error at
-// ε = 3e-3 falls from 0.74 % to 0.11 % (0.34 % with the volume clusters of before).
+// the centres' direction grazes an end). With planar clusters this cuts the power error of a
+// closed room several times (docs/calibration.md#calibrated-lobe-kernels).
 bool LinkSet::cast_cluster_rays(ClusterLink& link, int count) const {
     const NodeRef q = link.receiver, p = link.source;
     const Vec3 cq = node_centre(q), cp = node_centre(p);
@@ -503,8 +503,7 @@ bool LinkSet::resample_occluded(const std::vector<Rgb>& b) {
         // A link kept by an earlier pass of this refine() got the rays it asked for then (but
         // for draws that found no facing surface, made up at the next refine()), and the
         // radiosities have not changed since: every pass walked every link here (80 M
-        // links, about 30 passes a cycle on the 1M floor). 4x4 proxy: 40.5 s instead of 42.0,
-        // 180 links of 4.5 M differ.
+        // links, about 30 passes a cycle on the 1M floor; docs/calibration.md#speed).
         ClusterLink& l = cluster_links_[k];
         if (cluster_kept_[k] || l.self || l.exact || l.visible() > 0 || l.rays == 0 ||
             l.rays >= oracle::k_max_cluster_rays)

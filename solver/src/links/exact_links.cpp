@@ -12,13 +12,12 @@
 // no power), and a cluster source sends the value of the linear fit of its radiosity
 // (planar_gradients) at the part of it the receiver sees most of (seen_offset). With one
 // value per end, the wall beside a floor split their link until the floor's gradient was
-// resolved (the 2x2 office floor took 4.06 M links, 3.66 M with the planes) and the lamp
-// room's sensors read up to 1.2 % off the all-pairs solve (0.54 % with them).
+// resolved, and took more links for a less accurate solve (docs/calibration.md#exact-links).
 //
 // Without exact links, a wall tessellated into 50 triangles and the floor beside it (each a face
 // cluster) are too close for a point model (the lobe links' admissibility), so every pair of
-// their roots gets a link: on a 2x2 office floor of tessellation 5 that made 8.8 M links
-// where the same floor of untessellated rectangles takes 133 k at the same ε.
+// their roots gets a link: a tessellated floor took 66 times the links of the same floor
+// of untessellated rectangles (docs/calibration.md#exact-links).
 
 #include <algorithm>
 #include <cmath>
@@ -277,8 +276,7 @@ Vec3 LinkSet::sample_point(NodeRef n, Pcg32& rng, const std::vector<double>& run
 // receiver's plane (in its frame, exact_slope), scaled toward the mean where it would fall
 // below 0 over the receiver's bounds; the spread becomes twice the largest departure from
 // it. A wall lights the floor beside it by a steep gradient across the floor: the spread of
-// a constant split such links where a plane fits (the 2x2 office floor of tessellation 5
-// took 4.06 M links with the constant).
+// a constant split such links where a plane fits (docs/calibration.md#exact-links).
 void LinkSet::fit_slope(ClusterLink& link, const std::vector<WeightedPoint>& points,
                         const std::vector<double>& values, double f) const {
     const std::uint32_t c = cluster_index(link.receiver);
@@ -346,20 +344,16 @@ int LinkSet::exact_point_count(NodeRef q, NodeRef p, const Plane& pp) const {
     // A receiver that straddles the source's plane, or whose gap to the source is small
     // against its size, takes the finest points (4 per root): fewer do not resolve the cut,
     // or the steep part of F by a common edge (a wall and the floor it stands on got a
-    // twentieth of their form factor from cluster centroids; the perpendicular squares of
-    // ExactLinks.FormFactorMatchesAnalyticRectangles get it within 0.04 % from these). Such
-    // receivers were split at once before: the 2x2 office floor took 2.87 M links, 2.22 M
-    // without.
+    // twentieth of their form factor from cluster centroids). Such receivers are no longer
+    // split at once (docs/calibration.md#k_exact_points).
     const double eps = 1e-9 * h_.diagonal;
     bool fine = false;
     for_each_corner(q, [&](const Vec3& v) { fine = fine || dot(pp.n, v) - pp.d < -eps; });
     fine = fine || (is_cluster(q) && box_gap(q, p) < k_near_gap * node_radius(q));
     if (fine)
         return k_exact_points;
-    // Otherwise by the receiver's diameter over the distance. 64 points rather than 128
-    // between 0.4 and 1 (most of the points were there): the 2x2 office floor solved in
-    // 6.99 s instead of 7.47, its roots' radiosities 1.029 % off a solve at a tenth of ε
-    // (area-weighted) instead of 1.020 % (32 points: 6.77 s, 1.058 %).
+    // Otherwise by the receiver's diameter over the distance; 64 points rather than 128
+    // between 0.4 and 1, where most of the points were (docs/calibration.md#k_exact_points).
     const double r = length(node_centre(p) - node_centre(q));
     const double ratio = 2.0 * node_radius(q) / std::max(r, 1e-300);
     return ratio < 0.1 ? 4 : ratio < 0.4 ? 16 : ratio < 1.0 ? 64 : k_exact_points;
@@ -502,7 +496,7 @@ void LinkSet::exact_visibility(ClusterLink& link, const Plane& pq, const Plane& 
     }
     // Occlusion rays, which stop at any hit; a link all of whose rays are blocked traces them
     // again to their first hits, the planes that may prove it dark (a sixth of the office
-    // floors' exact links: the proxy solved in 30.1 s instead of 31.3 s, the same links).
+    // floors' exact links; docs/calibration.md#occlusion-certificates).
     blocked.resize(segments.size());
     visibility_.occluded(segments, blocked);
     double all = 0, open = 0;

@@ -74,25 +74,16 @@ inline bool refine_light_link(const OracleSettings& s, const LightLink& l, doubl
 // Cluster links (links/cluster_links.cpp).
 
 /// A cluster link is kept only while the bounding spheres' radii sum to less than this times
-/// the distance between the centres (a multipole method's admissibility). Measured on the
-/// 2k office floor against 128 area-drawn rays per link: links with radii of 1–2 × the
-/// distance carried 3 % (cluster pairs) to 30 % (cluster–element) of their true transfer (their
-/// four rays, between points that face the other centre, see little of what the parts
-/// exchange); with this bound the links' summed model transfer is 0.97 of the true one.
+/// the distance between the centres (a multipole method's admissibility): closer pairs' four
+/// rays, between points that face the other centre, see little of what the parts exchange
+/// (docs/calibration.md#k_admissible).
 inline constexpr double k_admissible = 0.5;
 /// The reflected light a cluster link brings is weighed against this many times the threshold
 /// of its direct light (what its source emits): reflected light is smooth, and direct light
-/// is what the vertices' far part shows. With face clusters and calibrated kernels, on the
-/// 2x1-office floor of tessellation 5: 5.63 M links at 3, 4.65 M at 5, 3.64 M at 10 (1 at
-/// first: 8.9 M); the lamp room's power error at ε = 3e-3 is 0.11 / 0.17 / 0.26 %, two
-/// sealed rooms take 2.08 / 2.10 / 2.16 × one room's links, and the hall's vertex direct
-/// light stays at 0.61 %.
+/// is what the vertices' far part shows (docs/calibration.md#k_reflected_slack).
 inline constexpr double k_reflected_slack = 5.0;
-/// Rays a link all of whose rays were blocked may get before the oracle splits it instead.
-/// On the 2x2 office floor of tessellation 5 at min area 0.244 m², against a solve at a 3x
-/// finer ε, at 32 / 64 / 128 / 256: 9.4 / 9.9 / 10.9 / 11.1 s, 44 / 47 / 50 / 54 M rays,
-/// the elements' indirect irradiance 2.70 / 2.63 / 2.61 / 2.61 % off, its mean 0.9910 /
-/// 0.9923 / 0.9927 / 0.9927 of the reference's (the bias of links taken as dark).
+/// Rays a link all of whose rays were blocked may get before the oracle splits it instead:
+/// more rays cost time and change little (docs/calibration.md#k_max_cluster_rays).
 inline constexpr int k_max_cluster_rays = 64;
 /// Such a link gets rays until its uncertainty is this many times below the threshold: a link
 /// taken as occluded loses what light it carries, always in the same direction.
@@ -155,19 +146,12 @@ inline double resample_rays(const OracleSettings& s, double open, std::uint16_t 
 // Exact links (links/exact_links.cpp).
 
 /// The same for exact links (all their light is reflected), whose receivers take the plane
-/// of their form factor (links/exact_links.cpp). When it was chosen (with a partly occluded
-/// link's whole transfer counted 4 times as its shadow error), on the 2x2 office floor of
-/// tessellation 5 at 5 / 7.5 / 10: 3.76 / 3.66 / 3.09 M links; the lamp room's power error at
-/// ε = 3e-3 was 0.13 / 0.17 / 0.27 %, its sensors within 0.44 / 0.54 / 0.77 % of all pairs'.
+/// of their form factor (links/exact_links.cpp; docs/calibration.md#k_exact_slack).
 inline constexpr double k_exact_slack = 7.5;
 /// A partly occluded exact link to a cluster receiver counts this many times F · B v (1 − v)
-/// as error (exact_link_error; 4 times the mean error of its visibility over a sharp shadow).
-/// Without it the ceiling of the lamp room, shadowed by the lamp 1 cm below it, took light
-/// its clusters' mean visibility gave it and sent it into the lamp's back (its power error
-/// at ε = 1e-2 was −0.65 %, −0.36 % with it). Counting 4 F B v instead (the whole transfer,
-/// whatever the shadow's share) split links whose shadow was a sliver: the 2x2 office floor
-/// took 2.22 M links rather than 2.03 M, and the lamp room's power error at ε = 3e-3 was
-/// 0.19 % rather than 0.03 %.
+/// as error (exact_link_error; 4 times the mean error of its visibility over a sharp shadow):
+/// without it a ceiling shadowed by a lamp just below it takes light its clusters' mean
+/// visibility gives it (docs/calibration.md#k_shadow_weight).
 inline constexpr double k_shadow_weight = 8.0;
 
 /// \brief The element oracle's estimate for a resolved exact link, with the source's
@@ -186,9 +170,7 @@ inline double exact_link_error(const OracleSettings& s, const ClusterLink& link,
         link.visible() > 0 || link.rays == 0 ? 0.0 : f * mean / double(link.rays);
     // A partly occluded link gives its cluster receiver its mean visibility v everywhere,
     // across the shadow: where that is sharp, v is off by 2 v (1 − v) on average. As with
-    // the spread, only splitting the receiver resolves that (2x2 office floor: 0.98 M links
-    // instead of 1.01 M, the elements' indirect irradiance 2.72 % off a 3x finer ε instead
-    // of 2.66 %).
+    // the spread, only splitting the receiver resolves that (docs/calibration.md#k_shadow_weight).
     const double shadow = link.partial && is_cluster(link.receiver) && receiver_splittable
                               ? k_shadow_weight * f * visible * (1.0 - visible) * mean
                               : 0.0;

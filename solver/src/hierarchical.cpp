@@ -98,7 +98,7 @@ double radiosity_scale(const Hierarchy& h, const LinkSet& links) {
 
 namespace {
 
-// A re-solve: the saved hierarchy with the new scene's reflectances and emissions.
+// A re-solve: the saved hierarchy with the new scene's reflectances, emissions and opacity.
 Hierarchy reused_hierarchy(const RadiosityMesh& mesh, const HierarchicalState& state) {
     if (state.mesh_hash != mesh_geometry_hash(mesh) ||
         state.hierarchy.root_count != mesh.element_count())
@@ -109,6 +109,7 @@ Hierarchy reused_hierarchy(const RadiosityMesh& mesh, const HierarchicalState& s
         const Patch& p = mesh.patches[h.patch[n]];
         h.emission[n] = p.emission;
         h.reflectance[n] = p.reflectance;
+        h.opaque[n] = p.opaque ? 1 : 0;
     }
     return h;
 }

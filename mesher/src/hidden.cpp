@@ -32,6 +32,10 @@ namespace {
 
 constexpr int k_probe_count = 64;
 
+// Probes and source rays are light: they pass through glazing, which neither encloses a
+// region nor hides a source.
+constexpr SurfaceBvh::Meets k_light = SurfaceBvh::Meets::opaque;
+
 // Steepest first: a probe stops at the first direction that meets a front side, and the
 // steep ones meet the ceiling or a desk above an open region at once, where grazing ones
 // may run across a whole floor plate first (a cost that grows as √n per probe). The set, so
@@ -90,9 +94,10 @@ EnclosureTest::EnclosureTest(const Scene& scene, const std::vector<Surface>& sur
     build_blockers();
 }
 
-// Coplanar non-emitting surfaces (the same plane up to rounding, either orientation) that
-// share outline vertices form groups; a group whose members' areas add up to its convex
-// hull's tiles the hull, which then blocks as one surface. Other convex surfaces block alone.
+// Coplanar opaque non-emitting surfaces (the same plane up to rounding, either orientation)
+// that share outline vertices form groups; a group whose members' areas add up to its convex
+// hull's tiles the hull, which then blocks as one surface. Other convex surfaces block alone;
+// glazing never blocks.
 void EnclosureTest::build_blockers() {
     const std::size_t n = surfaces_.size();
     blocker_of_.assign(n, -1);
@@ -102,7 +107,7 @@ void EnclosureTest::build_blockers() {
     std::map<PlaneKey, std::vector<std::uint32_t>> planes;
     for (std::uint32_t i = 0; i < n; ++i) {
         const Surface& s = surfaces_[i];
-        if (s.emits_front || s.emits_back)
+        if (s.emits_front || s.emits_back || !s.opaque)
             continue;
         // One orientation per plane: the first clearly non-zero normal component positive.
         const Vec3 nn = s.normal;
@@ -248,7 +253,7 @@ bool EnclosureTest::sees(const Vec3& q, const SourcePoint& src) const {
     // The probed surface itself is not skipped: a source on its other side is behind it.
     const std::array<std::uint32_t, 1> skip{std::uint32_t(std::max(src.surface, 0))};
     const std::span<const std::uint32_t> skips(skip.data(), src.surface >= 0 ? 1 : 0);
-    return !bvh_.occluded(q, src.position - q, 1e-9, 1.0 - 1e-9, skips);
+    return !bvh_.occluded(q, src.position - q, 1e-9, 1.0 - 1e-9, skips, k_light);
 }
 
 bool EnclosureTest::sees_a_source(const Vec3& q) const {
@@ -271,7 +276,8 @@ bool EnclosureTest::sees_a_source(const Vec3& q) const {
                     return true;
             continue;
         }
-        const std::int32_t blocker = bvh_.first_hit(q, centre(node.box) - q, 0.0, 1.0).surface;
+        const std::int32_t blocker =
+            bvh_.first_hit(q, centre(node.box) - q, 0.0, 1.0, {}, k_light).surface;
         // The parent's blocker was tried on this box above; another tile of its group would
         // be the same test.
         if (!same_blocker(blocker, item.blocker) && blocks(q, blocker, node.box))
@@ -291,7 +297,8 @@ bool EnclosureTest::enclosed(const Vec3& p, const Vec3& n, std::uint32_t s, doub
     const std::array<std::uint32_t, 1> skip{s};
     for (const Vec3& local : directions_) {
         const Vec3 dir = frame.to_world(local);
-        const SurfaceBvh::Hit hit = bvh_.first_hit(q, dir, 0.0, 4.0 * params_.diagonal + 1.0, skip);
+        const SurfaceBvh::Hit hit =
+            bvh_.first_hit(q, dir, 0.0, 4.0 * params_.diagonal + 1.0, skip, k_light);
         if (hit.surface < 0)
             return false;
         if (!hit.back &&

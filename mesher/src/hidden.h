@@ -22,10 +22,11 @@ public:
     using HiddenAt = std::function<bool(std::uint32_t s, const Vec3& p, bool back)>;
 
     /// \brief Whether the side with unit normal \p n of surface \p s is enclosed at \p p: every
-    ///        one of 64 probe rays from just above p meets the back side of some surface (or a
-    ///        side that \p hidden_at, if given, reports hidden), and no source (emitting side
-    ///        of an emissive surface, point light) is visible from there. \p inradius bounds
-    ///        the distance from p to the region's boundary.
+    ///        one of 64 probe rays from just above p meets the back side of some opaque
+    ///        surface (or a side that \p hidden_at, if given, reports hidden), and no source
+    ///        (emitting side of an emissive surface, point light) is visible from there.
+    ///        Probes and source rays pass through glazing (Surface::opaque false). \p inradius
+    ///        bounds the distance from p to the region's boundary.
     bool enclosed(const Vec3& p, const Vec3& n, std::uint32_t s, double inradius,
                   const HiddenAt& hidden_at = nullptr) const;
 
@@ -55,9 +56,9 @@ private:
     std::vector<Vec3> directions_; ///< unit, around +z
     std::vector<SourcePoint> sources_;
     std::vector<SourceNode> source_nodes_;
-    /// A convex region of one plane that occludes sources: a non-emitting surface with a
-    /// convex outline, or a connected set of coplanar ones that tiles its convex hull (the
-    /// quads of a tessellated rectangle), in the 2D frame of one of them.
+    /// A convex region of one plane that occludes sources: an opaque non-emitting surface
+    /// with a convex outline, or a connected set of coplanar ones that tiles its convex hull
+    /// (the quads of a tessellated rectangle), in the 2D frame of one of them.
     struct Blocker {
         std::uint32_t frame = 0; ///< the surface whose plane and 2D frame the outline uses
         std::vector<Vec2> outline;

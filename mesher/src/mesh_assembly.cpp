@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/material.h"
 #include "core/parallel.h"
 
 namespace penumbra::mesher {
@@ -78,18 +79,19 @@ std::vector<std::int32_t> write_side(RadiosityMesh& mesh, const Surface& s, cons
 void write_surface(RadiosityMesh& mesh, const Scene& scene, const Surface& s,
                    const SurfaceTriangulation& tri, Offsets at, std::size_t surface_index) {
     const Polygon& poly = scene.polygons[s.polygon];
-    const Material& mat = scene.materials[poly.material];
+    const RadiosityResponse response = radiosity_response(scene.materials[poly.material]);
     Patch front;
     front.polygon = s.polygon;
     front.surface = s.id;
     front.material = poly.material;
     front.normal = s.normal;
-    front.reflectance = mat.reflectance;
-    front.emission = mat.emission * float(k_pi);
+    front.reflectance = response.reflectance;
+    front.emission = response.emission * float(k_pi);
+    front.opaque = response.opaque();
     Patch back = front;
     back.back = true;
     back.normal = -s.normal;
-    back.emission = mat.emission_two_sided ? front.emission : Rgb{};
+    back.emission = response.emission_two_sided ? front.emission : Rgb{};
     const auto none = std::vector<std::int32_t>(tri.face_count, -1);
     const auto f =
         has_front(tri) ? write_side(mesh, s, tri.sides[0], front, tri.face_count, at) : none;

@@ -45,11 +45,12 @@ bool ray_hits_box(const BBox& b, const Vec3& o, const Vec3& inv, double t0, doub
     return true;
 }
 
-bool skipped(std::span<const std::uint32_t> skip, std::uint32_t s) {
-    return std::find(skip.begin(), skip.end(), s) != skip.end();
-}
-
 } // namespace
+
+bool SurfaceBvh::ignored(std::uint32_t s, std::span<const std::uint32_t> skip, Meets meets) const {
+    return std::find(skip.begin(), skip.end(), s) != skip.end() ||
+           (meets == Meets::opaque && !surfaces_[s].opaque);
+}
 
 SurfaceBvh::SurfaceBvh(const std::vector<Surface>& surfaces) : surfaces_(surfaces) {
     order_.resize(surfaces.size());
@@ -174,11 +175,11 @@ void SurfaceBvh::traverse(const Vec3& origin, const Vec3& dir, double t0, double
 }
 
 SurfaceBvh::Hit SurfaceBvh::first_hit(const Vec3& origin, const Vec3& dir, double t0, double t1,
-                                      std::span<const std::uint32_t> skip) const {
+                                      std::span<const std::uint32_t> skip, Meets meets) const {
     Hit hit;
     const double t_end = t1;
     traverse(origin, dir, t0, t1, [&](std::uint32_t s, double t, bool back) {
-        if (!(t < t_end) || skipped(skip, s))
+        if (!(t < t_end) || ignored(s, skip, meets))
             return false;
         if (hit.surface < 0 || t < hit.t ||
             (t == hit.t && tie_rank_[s] < tie_rank_[std::size_t(hit.surface)])) {
@@ -191,10 +192,10 @@ SurfaceBvh::Hit SurfaceBvh::first_hit(const Vec3& origin, const Vec3& dir, doubl
 }
 
 bool SurfaceBvh::occluded(const Vec3& origin, const Vec3& dir, double t0, double t1,
-                          std::span<const std::uint32_t> skip) const {
+                          std::span<const std::uint32_t> skip, Meets meets) const {
     bool blocked = false;
     traverse(origin, dir, t0, t1, [&](std::uint32_t s, double t, bool) {
-        blocked = t < t1 && !skipped(skip, s);
+        blocked = t < t1 && !ignored(s, skip, meets);
         return blocked;
     });
     return blocked;

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "core/material.h"
 #include "surface_bvh.h"
 
 namespace penumbra::mesher {
@@ -231,7 +232,7 @@ std::vector<Surface> build_surfaces(const Scene& scene, const MeshParams& params
     std::vector<Surface> surfaces;
     for (std::uint32_t pi = 0; pi < scene.polygons.size(); ++pi) {
         const Polygon& poly = scene.polygons[pi];
-        const Material& mat = scene.materials[poly.material];
+        const RadiosityResponse response = radiosity_response(scene.materials[poly.material]);
         const std::string name = fmt::format("'{}' ({})", poly.name, poly.source);
         const auto pieces = planar_pieces(vertices[pi], scene.mesher.planarity_tolerance);
         Surface original;
@@ -248,9 +249,10 @@ std::vector<Surface> build_surfaces(const Scene& scene, const MeshParams& params
                 continue; // a degenerate fan triangle: nothing to mesh
             s.polygon = pi;
             s.id = std::uint32_t(surfaces.size());
-            s.two_sided = mat.two_sided;
-            s.emits_front = !mat.emission.is_black();
-            s.emits_back = s.emits_front && mat.emission_two_sided;
+            s.two_sided = response.two_sided;
+            s.emits_front = !response.emission.is_black();
+            s.emits_back = s.emits_front && response.emission_two_sided;
+            s.opaque = response.opaque();
             s.name = name;
             surfaces.push_back(std::move(s));
         }

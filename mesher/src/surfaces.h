@@ -42,7 +42,8 @@ struct Surface {
     double area = 0;
     bool two_sided = true;
     bool emits_front = false, emits_back = false;
-    std::string name; ///< "'name' (source)" for messages
+    bool opaque = true; ///< blocks all light (not glazing): the hidden-region test counts it
+    std::string name;   ///< "'name' (source)" for messages
 
     double distance(const Vec3& p) const { return dot(normal, p) - offset; }
     Vec2 to_2d(const Vec3& p) const { return {dot(p - origin, axis_u), dot(p - origin, axis_v)}; }

@@ -68,7 +68,7 @@ double radiosity_scale(const Hierarchy& h, const LinkStore& links) {
     return scale;
 }
 
-// A re-solve: the saved hierarchy with the new scene's reflectances and emissions.
+// A re-solve: the saved hierarchy with the new scene's reflectances, emissions and opacity.
 Hierarchy reused_hierarchy(const RadiosityMesh& mesh, const HierarchicalState& state) {
     check_reusable(mesh, state);
     Hierarchy h = state.hierarchy;
@@ -76,6 +76,7 @@ Hierarchy reused_hierarchy(const RadiosityMesh& mesh, const HierarchicalState& s
         const Patch& p = mesh.patches[h.patch[n]];
         h.emission[n] = p.emission;
         h.reflectance[n] = p.reflectance;
+        h.opaque[n] = p.opaque ? 1 : 0;
     }
     return h;
 }

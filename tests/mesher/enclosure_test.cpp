@@ -1,6 +1,6 @@
 // The enclosure test's source culling with tessellated blockers (mesher/src/hidden.cpp):
 // coplanar surfaces that tile a convex region block sources as one; a tiled face with a hole
-// does not.
+// does not, nor does glazing.
 
 #include <gtest/gtest.h>
 
@@ -70,6 +70,15 @@ bool bottom_enclosed(const Setup& b) {
 
 TEST(EnclosureTest, TiledClosedBoxHidesItsInside) {
     EXPECT_TRUE(bottom_enclosed(tiled_box(25, false)));
+}
+
+// Glazing encloses nothing: with a glass top, probes and the panel's light pass through it.
+TEST(EnclosureTest, GlazedTopDoesNotEnclose) {
+    auto b = tiled_box(5, false); // "Setup" would name gtest's Test::Setup here
+    EXPECT_TRUE(bottom_enclosed(b));
+    for (std::uint32_t i = 25; i < 50; ++i) // the top's tiles
+        b.surfaces[i].opaque = false;
+    EXPECT_FALSE(bottom_enclosed(b));
 }
 
 // The top's tiles, with a hole of 0.04 in their middle (which no probe ray goes through),

@@ -21,8 +21,11 @@ struct Patch {
     std::uint32_t material = 0; ///< index into Scene::materials
     bool back = false;          ///< the back side of a two-sided surface
     Vec3 normal;                ///< unit normal of this side
-    Rgb reflectance;            ///< copied from the material
+    Rgb reflectance;            ///< the material's diffuse reflectance (radiosity_response)
     Rgb emission;               ///< emitted radiosity πL of this side, W/m²
+    /// Blocks all light (RadiosityResponse::opaque): every surface but glazing. Occluder
+    /// certificates and the mesher's hidden regions count only opaque surfaces.
+    bool opaque = true;
 };
 
 /// \brief A discontinuity in the illumination (a shadow boundary) that the mesher inserted

@@ -9,23 +9,11 @@
 #include <vector>
 
 #include "core/enum_names.h"
+#include "core/material.h"
 #include "core/rgb.h"
 #include "core/vec.h"
 
 namespace penumbra {
-
-/// \brief A diffuse material. Emission is the emitted radiance of the front side (and of the
-///        back side too when emission_two_sided).
-struct Material {
-    std::string name;
-    Rgb reflectance{0.5f}; ///< diffuse reflectance ρ, each channel in [0, 1)
-    Rgb emission{};        ///< emitted radiance, W/(sr·m²)
-    bool two_sided = true; ///< front and back are separate receiving elements
-    bool emission_two_sided = false;
-    /// If set, the loader scales emission so that all polygons of this material together emit
-    /// this luminous flux (lm); emission then holds the colour until scaling.
-    std::optional<double> emission_flux_lm;
-};
 
 /// \brief A planar (or nearly planar) input polygon, counter-clockwise seen from its front.
 struct Polygon {

@@ -28,6 +28,13 @@ public:
     /// surface may be named), -1 if nothing blocks it, or -2 if something does that this
     /// query cannot name (the default, which calls occluded()). Sizes must match.
     virtual void first_hit(std::span<const Segment> segments, std::span<std::int32_t> hit) const;
+    /// Sets out[i] to the fraction of light that passes along segments[i]: 1 if nothing is in
+    /// the way, 0 if an opaque surface is, else the product of the transmittances T(θ) of the
+    /// panes of glazing it crosses (ThinGlass::transmittance at its angle to each pane; one
+    /// value for all channels, so grey panes until coloured glazing needs more, issue #30).
+    /// The default, for queries where every surface is opaque, is 1 − occluded(). Sizes must
+    /// match.
+    virtual void transmittance(std::span<const Segment> segments, std::span<float> out) const;
     /// Total rays traced so far.
     virtual std::uint64_t rays_traced() const = 0;
 };
@@ -38,6 +45,14 @@ inline void VisibilityQuery::first_hit(std::span<const Segment> segments,
     occluded(segments, blocked);
     for (std::size_t i = 0; i < blocked.size() && i < hit.size(); ++i)
         hit[i] = blocked[i] ? -2 : -1;
+}
+
+inline void VisibilityQuery::transmittance(std::span<const Segment> segments,
+                                           std::span<float> out) const {
+    std::vector<std::uint8_t> blocked(segments.size());
+    occluded(segments, blocked);
+    for (std::size_t i = 0; i < blocked.size() && i < out.size(); ++i)
+        out[i] = blocked[i] ? 0.0f : 1.0f;
 }
 
 /// \brief A query that reports nothing blocked: for convex scenes and tests.

@@ -23,6 +23,12 @@ public:
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
+    /// Every element blocks here, whatever its Patch::opaque (no scene has glazing yet), so
+    /// transmittance() is the default, 1 − occluded(). Panes will be a geometry of their own
+    /// whose occlusion filter function (rtcSetGeometryOccludedFilterFunction) multiplies the
+    /// pane's T(θ) into the ray's transmittance and rejects the hit, so that traversal goes on
+    /// to the opaque surface that ends it, if any; a pane reported twice (the high-quality
+    /// build may split a primitive) counts once (issue #30).
     void occluded(std::span<const Segment> segments, std::span<std::uint8_t> out) const override;
     /// Names the front element of a two-sided surface.
     void first_hit(std::span<const Segment> segments, std::span<std::int32_t> hit) const override;

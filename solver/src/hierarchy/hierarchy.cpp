@@ -20,6 +20,7 @@ Hierarchy::Hierarchy(const RadiosityMesh& mesh) {
         level.push_back(0);
         emission.push_back(p.emission);
         reflectance.push_back(p.reflectance);
+        opaque.push_back(p.opaque ? 1 : 0);
     }
 }
 
@@ -45,6 +46,7 @@ void Hierarchy::subdivide(std::uint32_t n) {
         level.push_back(level[n] + 1);
         emission.push_back(emission[n]);
         reflectance.push_back(reflectance[n]);
+        opaque.push_back(opaque[n]);
     }
 }
 

@@ -19,6 +19,7 @@ struct Hierarchy {
     std::vector<std::int32_t> first_child; ///< -1 for leaves; children are first_child + 0..3
     std::vector<std::int32_t> level;
     std::vector<Rgb> emission, reflectance;
+    std::vector<std::uint8_t> opaque; ///< 1 where the surface blocks all light (Patch::opaque)
     std::size_t root_count = 0;
     double diagonal = 0;
 

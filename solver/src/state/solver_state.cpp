@@ -203,6 +203,7 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
             r.fail("link to a missing node");
     h.emission.assign(n, Rgb{});
     h.reflectance.assign(n, Rgb{});
+    h.opaque.assign(n, 1);
     return s;
 }
 

@@ -104,11 +104,11 @@ OccluderPlanes::OccluderPlanes(const Hierarchy& h, const std::vector<std::int32_
     cell_triangles_begin_.push_back(0);
     std::vector<std::uint32_t> roots;
     for (std::size_t pi = 0; pi < planes_.size(); ++pi) {
-        // A two-sided surface once: its root of the smaller index.
+        // The opaque roots; a two-sided surface once: its root of the smaller index.
         roots.clear();
         for (std::uint32_t i = plane_begin[pi]; i < plane_begin[pi + 1]; ++i) {
             const std::uint32_t r = keyed[i].second;
-            if (twin[r] < 0 || std::uint32_t(twin[r]) > r)
+            if (h.opaque[r] && (twin[r] < 0 || std::uint32_t(twin[r]) > r))
                 roots.push_back(r);
         }
         add_plane(planes_[pi], h, roots, vertex_unit);
@@ -312,6 +312,8 @@ bool OccluderPlanes::inside_triangle(std::uint32_t t, Point2 x) const {
 bool OccluderPlanes::blocks(std::uint32_t pi, std::span<const Vec3> a,
                             std::span<const Vec3> b) const {
     const Plane& plane = planes_[pi];
+    if (plane.lo.x > plane.hi.x)
+        return false; // no opaque triangle in this plane: nothing to block with
     // Where the segments between the points cross the plane; each must lie within the
     // bounds of the plane's triangles (most planes the rays meet are furniture that blocks a
     // part of the shaft).

@@ -5,9 +5,10 @@
 // two point sets on opposite sides of a plane crosses it inside the convex hull of the
 // crossings of the segments between their points; where that hull lies inside the union, the
 // plane blocks them all, which no finite number of rays can prove. An office's partition
-// blocks every link between the rooms on its two sides, except through its door. Every root
-// is an occluder, as every element is in the visibility query's scene (a surface that lets
-// light through would have to be left out of both).
+// blocks every link between the rooms on its two sides, except through its door. Only opaque
+// roots (Hierarchy::opaque) occlude: glazing, which the visibility query lets light through
+// (VisibilityQuery::transmittance), is left out of the unions, so that a window is a hole in
+// its wall's plane as a door is.
 
 #include <array>
 #include <cstdint>
@@ -22,12 +23,12 @@ namespace penumbra::solver {
 class OccluderPlanes {
 public:
     OccluderPlanes() = default;
-    /// The planes of the roots of \p h; a two-sided surface (root r with twin[r] >= 0) counts
-    /// once.
+    /// The planes of the roots of \p h, each with the union of its opaque roots' triangles;
+    /// a two-sided surface (root r with twin[r] >= 0) counts once.
     OccluderPlanes(const Hierarchy& h, const std::vector<std::int32_t>& twin);
 
     std::size_t size() const { return planes_.size(); }
-    /// The plane root \p r lies in.
+    /// The plane root \p r lies in (also for a root that does not occlude).
     std::uint32_t plane_of_root(std::uint32_t r) const { return root_plane_[r]; }
     /// Signed distance of \p x from plane \p p (along its normal), metres.
     double distance(std::uint32_t p, const Vec3& x) const {

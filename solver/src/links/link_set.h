@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/light.h"
 #include "core/rng.h"
 #include "core/scene.h"
 #include "core/visibility.h"
@@ -43,8 +44,8 @@ private:
 static_assert(sizeof(Link) == 16);
 
 struct LightLink {
-    /// light: index into the point lights, or their count for the sun.
-    std::uint32_t receiver = 0, light = 0;
+    std::uint32_t receiver = 0;
+    LightId light{SunSource{}}; ///< a point light or the sun
     /// I Ω V / A of the receiver, W/m² (Ω weighted by a spot's profile); the sun's
     /// irradiance · cos θ · V
     Rgb irradiance;
@@ -52,6 +53,7 @@ struct LightLink {
     float spread = 0;
     std::uint8_t partial = 0; ///< partly occluded, or across a spot's hard cone edge
 };
+static_assert(sizeof(LightLink) == 28);
 
 /// The spread of an exact link that ClusterLink::unresolved().
 inline constexpr float k_unresolved = std::numeric_limits<float>::max();
@@ -240,7 +242,7 @@ private:
     /// The link from \p source to \p receiver among links_[0, sorted) as receiver_offsets()
     /// indexed them, or null.
     const Link* find_link(std::uint32_t receiver, std::uint32_t source, std::size_t sorted) const;
-    LightLink make_light_link(std::uint32_t receiver, std::uint32_t light) const;
+    LightLink make_light_link(std::uint32_t receiver, LightId light) const;
     LightLink make_sun_link(std::uint32_t receiver) const;
     void subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<float>& b_range);
     bool refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
@@ -430,7 +432,7 @@ private:
     std::vector<std::int32_t>& twin_;
     const VisibilityQuery& visibility_;
     const std::vector<PointLight>& lights_;
-    const Sun* sun_ = nullptr; ///< light index lights_.size() in light links
+    const Sun* sun_ = nullptr; ///< null without a sun
     RefineSettings settings_;
     MappedArray<Link> links_;
     std::vector<LightLink> light_links_;

@@ -20,8 +20,7 @@ namespace {
 
 Source sun_source(const Sun& sun) {
     Source src;
-    src.id = -1;
-    src.at_infinity = true;
+    src.light = SunSource{};
     src.axis = sun.direction;
     const double r = sun.angular_radius();
     src.sin_radius = std::sin(r);
@@ -47,8 +46,8 @@ std::vector<Source> collect_sources(const Scene& scene, const std::vector<Surfac
             if (!(side == 0 ? s.emits_front : s.emits_back))
                 continue;
             Source src;
-            src.id = std::int32_t(s.polygon);
-            src.surface = std::int32_t(s.id);
+            src.light = AreaSource{s.polygon};
+            src.surface = s.id;
             src.vertices = s.outline;
             src.normal = side == 0 ? s.normal : -s.normal;
             src.offset = side == 0 ? s.offset : -s.offset;
@@ -58,7 +57,7 @@ std::vector<Source> collect_sources(const Scene& scene, const std::vector<Surfac
     for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
         const PointLight& light = scene.point_lights[i];
         Source src;
-        src.id = -2 - std::int32_t(i);
+        src.light = PointSource{std::uint32_t(i)};
         src.vertices = {light.position};
         if (light.spot) {
             src.axis = light.spot->direction;
@@ -167,8 +166,8 @@ bool edge_vertex_wedge(Event& ev, const Vec3& w, const Vec3& r1, const Vec3& r2,
 }
 
 std::vector<std::uint32_t> with_source(std::vector<std::uint32_t> skip, const Source& src) {
-    if (src.surface >= 0)
-        skip.push_back(std::uint32_t(src.surface));
+    if (src.surface)
+        skip.push_back(*src.surface);
     return skip;
 }
 
@@ -176,7 +175,7 @@ std::vector<std::uint32_t> with_source(std::vector<std::uint32_t> skip, const So
 // or not changes only where cos θ crosses cos_cutoff or dot(x − p, axis) changes sign, so
 // the predicate is tested at the middle of each piece between those roots.
 std::vector<std::pair<Vec3, Vec3>> lit_parts(const Source& src, const Vec3& a, const Vec3& b) {
-    if (src.surface >= 0 || src.cos_cutoff <= -1)
+    if (src.surface || src.cos_cutoff <= -1)
         return {{a, b}};
     const Vec3 u = a - src.vertices[0], w = b - a;
     const double alpha = dot(u, src.axis), beta = dot(w, src.axis);
@@ -219,7 +218,7 @@ std::vector<std::pair<Vec3, Vec3>> lit_parts(const Source& src, const Vec3& a, c
 
 // The part of [a, b] in front of the source; false if none.
 bool clip_in_front(const Source& src, Vec3& a, Vec3& b, double eps) {
-    if (src.surface < 0)
+    if (!src.surface)
         return true;
     const double da = dot(src.normal, a) - src.offset, db = dot(src.normal, b) - src.offset;
     if (da <= eps && db <= eps)
@@ -391,7 +390,7 @@ void vertex_edge_part_events(const Source& src, std::uint32_t si, const FeatureE
         if (!one_side(m, a, edge.wings, params.diagonal) || !sees(bvh, a, b, v, skip))
             continue;
         Event ev = new_event(EventKind::vertex_edge, si, ei, k,
-                             src.surface < 0 ? 0
+                             !src.surface ? 0
                              : (parallel(src.vertices[(k + 1) % n] - v, b - a) ||
                                 parallel(src.vertices[(k + n - 1) % n] - v, b - a))
                                  ? 1
@@ -405,10 +404,10 @@ void vertex_edge_events(const Source& src, std::uint32_t si, const Features& fea
                         std::uint32_t ei, const SurfaceBvh& bvh, const MeshParams& params,
                         std::vector<Event>& out) {
     const FeatureEdge& edge = features.edges[ei];
-    if (src.at_infinity)
+    if (src.at_infinity())
         return sun_vertex_edge_events(src, si, edge, ei, bvh, params, out);
-    if (src.surface >= 0 && std::find(edge.surfaces.begin(), edge.surfaces.end(),
-                                      std::uint32_t(src.surface)) != edge.surfaces.end())
+    if (src.surface &&
+        std::find(edge.surfaces.begin(), edge.surfaces.end(), *src.surface) != edge.surfaces.end())
         return;
     Vec3 a = edge.a, b = edge.b;
     if (!clip_in_front(src, a, b, params.snap))
@@ -423,10 +422,10 @@ void edge_vertex_events(const Source& src, std::uint32_t si, const Features& fea
                         std::uint32_t vi, const SurfaceBvh& bvh, const MeshParams& params,
                         std::vector<Event>& out) {
     const FeatureVertex& vertex = features.vertices[vi];
-    if (src.at_infinity)
+    if (src.at_infinity())
         return sun_edge_vertex_events(src, si, vertex, vi, bvh, params, out);
     const Vec3& w = vertex.p;
-    if (src.surface < 0 || !src.in_front(w, params.snap))
+    if (!src.surface || !src.in_front(w, params.snap))
         return;
     const std::vector<std::uint32_t> skip = with_source(vertex.surfaces, src);
     const std::size_t n = src.vertices.size();

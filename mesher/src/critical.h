@@ -14,6 +14,7 @@
 // k_sun_rim_sides (the regular polygon where no edge touches).
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/context.h"
@@ -30,8 +31,8 @@ inline constexpr int k_sun_rim_sides = 16;
 /// A light source as the discontinuity mesher sees it: a polygon emitting to one side, a
 /// point, or the sun (a disc at infinity).
 struct Source {
-    std::int32_t id = -1;      ///< DiscontinuitySegment::source
-    std::int32_t surface = -1; ///< the emitting surface, -1 for a point light or the sun
+    LightSource light = SunSource{};      ///< DiscontinuitySegment::source
+    std::optional<std::uint32_t> surface; ///< the emitting surface of an area source
     /// The polygon's corners or the point; the sun: unit directions toward the corners of a
     /// regular polygon inscribed in its rim (its centre alone for a disc of no size).
     std::vector<Vec3> vertices;
@@ -43,10 +44,10 @@ struct Source {
     double cos_cutoff = -1;
     /// The sun: at infinity toward the unit `axis`, its disc's angular radius r with
     /// sin r = sin_radius.
-    bool at_infinity = false;
     double sin_radius = 0;
+    bool at_infinity() const { return penumbra::at_infinity(light); }
     bool in_front(const Vec3& x, double eps) const {
-        return surface < 0 || dot(normal, x) - offset > eps;
+        return !surface || dot(normal, x) - offset > eps;
     }
 };
 

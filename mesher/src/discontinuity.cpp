@@ -13,6 +13,8 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <utility>
+#include <variant>
 
 #include "constraint_cleanup.h"
 #include "core/parallel.h"
@@ -89,7 +91,7 @@ public:
         : ev_(ev), src_(src), bvh_(bvh), skip_(std::move(skip)), params_(params) {}
 
     bool open(const Vec3& x) const {
-        if (src_.at_infinity) // through the blocker vertex, or along the touching direction
+        if (src_.at_infinity()) // through the blocker vertex, or along the touching direction
             return open_toward(x, ev_.kind == EventKind::edge_vertex ? normalize(ev_.apex - x)
                                                                      : ev_.toward);
         Vec3 target = ev_.apex;
@@ -173,7 +175,7 @@ const std::vector<std::uint32_t>& blocker_surfaces(const Event& ev, const Featur
 // faces the sun (a surface edge-on to it, or a one-sided one facing away, has the sun below
 // its horizon and receives nothing).
 bool receives(const Source& src, const Surface& r, double eps) {
-    if (src.at_infinity) {
+    if (src.at_infinity()) {
         const double c = dot(r.normal, src.axis);
         return r.two_sided ? std::abs(c) > 1e-9 : c > 1e-9;
     }
@@ -186,8 +188,8 @@ std::vector<Piece> event_pieces(const Event& ev, const std::vector<Source>& sour
                                 const SurfaceBvh& bvh, const MeshParams& params) {
     const Source& src = sources[ev.source];
     std::vector<std::uint32_t> skip = blocker_surfaces(ev, features);
-    if (src.surface >= 0)
-        skip.push_back(std::uint32_t(src.surface));
+    if (src.surface)
+        skip.push_back(*src.surface);
     std::vector<Piece> out;
     for (std::uint32_t ri : bvh.overlapping(ev.box)) {
         const Surface& r = surfaces[ri];
@@ -294,7 +296,7 @@ bool join_ends(Segment2& t, bool t_at_b, Segment2& s, bool s_at_b, double merge)
 void fit_sun_ends(std::vector<ReceiverSegment>& segs, const MeshParams& params) {
     std::vector<std::size_t> sun;
     for (std::size_t i = 0; i < segs.size(); ++i)
-        if (segs[i].source == -1)
+        if (std::holds_alternative<SunSource>(segs[i].source))
             sun.push_back(i);
     const double m = params.merge;
     for (int pass = 0; pass < 3; ++pass) {
@@ -355,6 +357,25 @@ void fit_sun_ends(std::vector<ReceiverSegment>& segs, const MeshParams& params) 
     segs.resize(kept);
 }
 
+// The order of a light's segments among a surface's (the constraints' order shapes the
+// triangulation): point lights from the last one, the sun, then polygons by index.
+std::pair<int, std::int64_t> insertion_rank(const LightSource& light) {
+    if (const auto* point = std::get_if<PointSource>(&light))
+        return {0, -std::int64_t(point->index)};
+    if (const auto* area = std::get_if<AreaSource>(&light))
+        return {3, area->polygon};
+    return {std::holds_alternative<SunSource>(light) ? 1 : 2, 0};
+}
+
+/// Orders (light, order) groups by insertion_rank, then by order.
+struct InsertionOrder {
+    bool operator()(const std::pair<LightSource, int>& x,
+                    const std::pair<LightSource, int>& y) const {
+        return std::pair(insertion_rank(x.first), x.second) <
+               std::pair(insertion_rank(y.first), y.second);
+    }
+};
+
 } // namespace
 
 std::vector<std::vector<ReceiverSegment>>
@@ -380,12 +401,12 @@ find_discontinuities(const Scene& scene, const std::vector<Surface>& surfaces,
         progress.update(double(end) / double(events.size()));
     }
     // Per surface, per (source, order): merge collinear overlapping pieces.
-    std::vector<std::map<std::pair<std::int32_t, int>, std::vector<Segment2>>> groups(
-        surfaces.size());
+    std::vector<std::map<std::pair<LightSource, int>, std::vector<Segment2>, InsertionOrder>>
+        groups(surfaces.size());
     for (std::size_t i = 0; i < events.size(); ++i)
         for (const Piece& p : pieces[i])
             if (p.order <= params.max_order)
-                groups[p.receiver][{sources[events[i].source].id, p.order}].push_back(p.segment);
+                groups[p.receiver][{sources[events[i].source].light, p.order}].push_back(p.segment);
     run_in_arena(ctx, [&] {
         parallel_for_index(surfaces.size(), 16, [&](std::size_t s) {
             for (const auto& [key, segments] : groups[s])

@@ -14,8 +14,8 @@ namespace penumbra::mesher {
 /// A discontinuity segment on one surface, in the surface's 2D frame.
 struct ReceiverSegment {
     Segment2 segment;
-    int order = 2;            ///< 0, 1 or 2
-    std::int32_t source = -1; ///< as DiscontinuitySegment::source
+    int order = 2;                    ///< 0, 1 or 2
+    LightSource source = SunSource{}; ///< as DiscontinuitySegment::source
 };
 
 /// \brief Per surface, the visible parts of the intersections of the critical wedges of every

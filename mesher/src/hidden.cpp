@@ -83,12 +83,12 @@ EnclosureTest::EnclosureTest(const Scene& scene, const std::vector<Surface>& sur
         Vec3 centre;
         for (const Vec3& v : s.outline)
             centre += v / double(s.outline.size());
-        sources_.push_back({centre, std::int32_t(s.id)});
+        sources_.push_back({centre, s.id});
         for (const Vec3& v : s.outline) // near the corners too, for non-convex emitters
-            sources_.push_back({v + (centre - v) * 0.1, std::int32_t(s.id)});
+            sources_.push_back({v + (centre - v) * 0.1, s.id});
     }
     for (const PointLight& light : scene.point_lights)
-        sources_.push_back({light.position, -1});
+        sources_.push_back({light.position, std::nullopt});
     if (!sources_.empty())
         build_sources(0, std::uint32_t(sources_.size()));
     build_blockers();
@@ -244,15 +244,15 @@ bool EnclosureTest::blocks(const Vec3& q, std::int32_t blocker, const BBox& box)
 }
 
 bool EnclosureTest::sees(const Vec3& q, const SourcePoint& src) const {
-    if (src.surface >= 0) {
-        const Surface& e = surfaces_[std::size_t(src.surface)];
+    if (src.surface) {
+        const Surface& e = surfaces_[*src.surface];
         const double d = e.distance(q);
         if (!((d > 0 && e.emits_front) || (d < 0 && e.emits_back)))
             return false;
     }
     // The probed surface itself is not skipped: a source on its other side is behind it.
-    const std::array<std::uint32_t, 1> skip{std::uint32_t(std::max(src.surface, 0))};
-    const std::span<const std::uint32_t> skips(skip.data(), src.surface >= 0 ? 1 : 0);
+    const std::array<std::uint32_t, 1> skip{src.surface.value_or(0)};
+    const std::span<const std::uint32_t> skips(skip.data(), src.surface ? 1 : 0);
     return !bvh_.occluded(q, src.position - q, 1e-9, 1.0 - 1e-9, skips, k_light);
 }
 

@@ -3,6 +3,7 @@
 // inside of a closed object): decided per region between contact lines, by probe rays.
 
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -33,7 +34,7 @@ public:
 private:
     struct SourcePoint {
         Vec3 position;
-        std::int32_t surface = -1; ///< -1 for a point light
+        std::optional<std::uint32_t> surface; ///< the emitting surface; none for a point light
     };
     /// A node of the tree over the source points: leaves hold sources_[first, first + count).
     struct SourceNode {

@@ -238,8 +238,7 @@ void check_reusable(const RadiosityMesh& mesh, const HierarchicalState& state) {
 HierarchicalSystem::HierarchicalSystem(const Scene& scene, const RadiosityMesh& mesh,
                                        const Context& ctx, const HierarchicalState* reuse)
     : h(reuse ? reused_hierarchy(mesh, *reuse) : Hierarchy(mesh)),
-      twin(reuse ? reuse->twin : mesh.element_twin), settings(refine_settings(scene, mesh, ctx)),
-      sun_light(std::uint32_t(scene.point_lights.size())) {
+      twin(reuse ? reuse->twin : mesh.element_twin), settings(refine_settings(scene, mesh, ctx)) {
     emitted = emitted_power_max(h, scene.point_lights); // and the sun's, once linked
     values.b = reuse ? reuse->radiosity : h.emission;
     values.b_range.assign(h.size(), 0.0f);

@@ -45,10 +45,9 @@ struct HierarchicalSystem {
     /// W, largest channel: the power of the sources solved last, what the residual is
     /// relative to.
     double emitted = 0;
-    std::uint32_t sun_light = 0; ///< the sun's index in light links (LightLink::light)
 
     /// What the sun's links deliver (W per channel): the sun's power in the balance.
-    RgbD sun_power() const { return links.sun_power(h, sun_light); }
+    RgbD sun_power() const { return links.sun_power(h); }
 };
 
 /// \brief Throws ConfigError unless \p state was saved by a solve of \p mesh's geometry.

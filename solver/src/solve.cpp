@@ -63,11 +63,12 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
         RgbD a = RgbD(1, 1, 1) - RgbD(p.reflectance);
         pb.absorbed += RgbD(h.r * a.r, h.g * a.g, h.b * a.b) * geo.area[e];
     }
-    for (std::size_t l = 0; l < scene.point_lights.size(); ++l) {
+    for (std::uint32_t l = 0; l < scene.point_lights.size(); ++l) {
         const PointLight& light = scene.point_lights[l];
         const RgbD power = light.power();
         pb.emitted += power;
-        pb.escaped += power * light_escape_fraction(geo, visibility, light, l, rows.seed);
+        pb.escaped +=
+            power * light_escape_fraction(geo, visibility, light, PointSource{l}, rows.seed);
     }
     pb.emitted += sun_delivered; // the sun's power is what its direct light delivers
     pb.residual = pb.emitted * unconverged_fraction;

@@ -161,7 +161,7 @@ TEST(Discontinuity, UmbraAndPenumbraBoundariesLieOnElementEdges) {
     EXPECT_GE(checked, 8);
     std::array<int, 3> orders{0, 0, 0};
     for (const DiscontinuitySegment& d : mesh.discontinuities) {
-        EXPECT_EQ(d.source, std::int32_t(b.light_polygon));
+        EXPECT_EQ(d.source, LightSource(AreaSource{b.light_polygon}));
         ++orders[std::size_t(d.order)];
         if (d.surface == 0) {
             EXPECT_NEAR(d.a.z, 0.0, 1e-9);
@@ -230,7 +230,7 @@ TEST(Discontinuity, PointLightCastsD0Boundaries) {
     ASSERT_FALSE(mesh.discontinuities.empty());
     for (const DiscontinuitySegment& d : mesh.discontinuities) {
         EXPECT_EQ(d.order, 0);
-        EXPECT_EQ(d.source, -2);
+        EXPECT_EQ(d.source, LightSource(PointSource{0}));
     }
     const Poly2 shadow = point_shadow(b, light.position);
     const auto floor = std::uint32_t(test::find_patch(mesh, 0));
@@ -433,7 +433,7 @@ TEST_P(SunOverBox, UmbraAndPenumbraBoundariesLieOnElementEdges) {
     EXPECT_GE(checked, 8); // an umbra and a penumbra boundary per silhouette edge
     std::array<int, 3> orders{0, 0, 0};
     for (const DiscontinuitySegment& d : mesh.discontinuities) {
-        EXPECT_EQ(d.source, -1); // the sun
+        EXPECT_EQ(d.source, LightSource(SunSource{}));
         ++orders[std::size_t(d.order)];
     }
     std::printf("sun at %g deg altitude, %g deg azimuth over a box: %zu segments (D0 %d, D1 %d, "

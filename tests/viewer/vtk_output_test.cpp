@@ -363,19 +363,24 @@ TEST(WriteVtp, Sensors) {
 
 TEST(WriteVtp, Discontinuities) {
     RadiosityMesh mesh = test_mesh();
-    mesh.discontinuities = {{Vec3(0, 0, 0), Vec3(1, 0, 0), 10, 1, 0},
-                            {Vec3(0, 1, 0), Vec3(1, 1, 0), 11, -2, 2}};
+    mesh.discontinuities = {{Vec3(0, 0, 0), Vec3(1, 0, 0), 10, AreaSource{1}, 0},
+                            {Vec3(0, 1, 0), Vec3(1, 1, 0), 11, PointSource{0}, 2},
+                            {Vec3(0, 2, 0), Vec3(1, 2, 0), 12, PointSource{3}, 2},
+                            {Vec3(0, 3, 0), Vec3(1, 3, 0), 13, SunSource{}, 1}};
     const std::string path = test::temp_dir("vtp") + "/discontinuities.vtp";
     write_discontinuities_vtp(path, mesh);
     auto data = read_vtp(path);
-    EXPECT_EQ(data->GetNumberOfPoints(), 4);
-    ASSERT_EQ(data->GetNumberOfLines(), 2);
+    EXPECT_EQ(data->GetNumberOfPoints(), 8);
+    ASSERT_EQ(data->GetNumberOfLines(), 4);
     double p[3];
     data->GetPoint(3, p);
     EXPECT_EQ(Vec3(p[0], p[1], p[2]), Vec3(1, 1, 0));
-    expect_scalar_array(data->GetCellData(), "order", VTK_INT, std::vector<int>{0, 2});
-    expect_scalar_array(data->GetCellData(), "source", VTK_INT, std::vector<int>{1, -2});
-    expect_scalar_array(data->GetCellData(), "surface", VTK_INT, std::vector<int>{10, 11});
+    expect_scalar_array(data->GetCellData(), "order", VTK_INT, std::vector<int>{0, 2, 2, 1});
+    // The documented values: the polygon's index, −2 − i for point light i, −1 for the sun.
+    expect_scalar_array(data->GetCellData(), "source", VTK_INT, std::vector<int>{1, -2, -5, -1});
+    expect_scalar_array(data->GetCellData(), "surface", VTK_INT, std::vector<int>{10, 11, 12, 13});
+    mesh.discontinuities = {{Vec3(0, 0, 0), Vec3(1, 0, 0), 10, SkySource{}, 0}};
+    EXPECT_THROW(write_discontinuities_vtp(path, mesh), InternalError); // the sky casts none
 }
 
 TEST(WritePvd, SeriesStepsAndReplacement) {

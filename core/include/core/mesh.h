@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/light.h"
 #include "core/rgb.h"
 #include "core/vec.h"
 
@@ -31,11 +32,9 @@ struct Patch {
 /// \brief A discontinuity in the illumination (a shadow boundary) that the mesher inserted
 ///        as element edges (issue #5). order: 0 = D0 (value), 1 = D1 (gradient), 2 = D2.
 struct DiscontinuitySegment {
-    Vec3 a, b;                 ///< endpoints, metres
-    std::uint32_t surface = 0; ///< the receiving planar surface
-    /// The source: ≥ 0 the emitting polygon (index into Scene::polygons), -1 the sun,
-    /// ≤ -2 the point light Scene::point_lights[-2 - source].
-    std::int32_t source = -1;
+    Vec3 a, b;                        ///< endpoints, metres
+    std::uint32_t surface = 0;        ///< the receiving planar surface
+    LightSource source = SunSource{}; ///< the light whose shadow boundary it is
     int order = 0;
 };
 

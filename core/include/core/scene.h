@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/enum_names.h"
+#include "core/light.h"
 #include "core/material.h"
 #include "core/rgb.h"
 #include "core/vec.h"
@@ -21,52 +22,6 @@ struct Polygon {
     std::uint32_t material = 0; ///< index into Scene::materials
     std::string name;           ///< object name from the file, for messages and output
     std::string source;         ///< "file:face-index" for messages
-};
-
-/// \brief The cone of a spot light: full intensity within the beam half-angle, none beyond
-///        the cut-off half-angle, and between them a smoothstep in cos θ (as pbrt-v4's
-///        SpotLight), so that the intensity and its slope are continuous.
-struct SpotCone {
-    Vec3 direction{0, 0, -1}; ///< unit beam axis
-    double beam_deg = 30;     ///< half-angle of full intensity, in [0, cutoff_deg]
-    double cutoff_deg = 45;   ///< half-angle beyond which nothing is emitted, in (0, 180]
-};
-
-/// \brief A point light: isotropic, or a spot when \p spot is set.
-struct PointLight {
-    std::string name;
-    Vec3 position; ///< metres
-    Rgb intensity; ///< radiant intensity (on the axis for a spot), W/sr per channel
-    std::optional<SpotCone> spot;
-
-    /// \brief Intensity toward the unit direction \p unit_dir (from the light) relative to
-    ///        \p intensity: 1 for an isotropic light, in [0, 1] for a spot.
-    double profile(const Vec3& unit_dir) const;
-    /// \brief The same as a function of cos θ to the spot's axis (1 for an isotropic light).
-    double profile_cos(double cos_theta) const;
-    /// \brief ∫ profile dω over the sphere, sr: 4π for an isotropic light, and for a spot
-    ///        2π [(1 − cos beam) + (cos beam − cos cutoff) / 2] (the smoothstep integrates to
-    ///        half its interval).
-    double profile_solid_angle() const;
-    /// \brief Total radiant flux, W per channel: intensity × profile_solid_angle().
-    RgbD power() const;
-};
-
-/// \brief The sun: a disc of uniform radiance at infinity. Its direct irradiance on a surface
-///        point of unit normal n is irradiance · max(0, cos θ) · V, with θ the angle between
-///        n and \p direction and V the visible fraction of the disc (exact where the disc is
-///        wholly above the surface's horizon: the cosine-weighted integral of a uniform disc is
-///        its normal irradiance times the cosine to its centre).
-struct Sun {
-    Vec3 direction{0, 0, 1};             ///< unit, from the scene toward the disc's centre
-    Rgb irradiance;                      ///< direct normal irradiance, W/m² per channel
-    double angular_diameter_deg = 0.533; ///< in [0, 10]; 0 = parallel light (hard shadows)
-
-    /// \brief Angular radius of the disc, radians.
-    double angular_radius() const;
-    /// \brief irradiance · max(0, dot(n, direction)): the unoccluded direct irradiance on a
-    ///        surface of unit normal \p n, W/m² per channel.
-    Rgb unoccluded(const Vec3& n) const;
 };
 
 /// \brief A sensor: a point and the normal of the receiving plane.

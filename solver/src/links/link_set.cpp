@@ -8,6 +8,7 @@
 #include <cmath>
 #include <span>
 #include <tuple>
+#include <variant>
 
 #include <tbb/parallel_sort.h>
 
@@ -113,12 +114,13 @@ void LinkSet::make_pair_links(std::size_t first, bool indexed) {
                               links_.begin()));
 }
 
-LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
-    if (l == lights_.size())
+LightLink LinkSet::make_light_link(std::uint32_t q, LightId id) const {
+    const LightSource source = id.source();
+    if (std::holds_alternative<SunSource>(source))
         return make_sun_link(q);
-    const PointLight& light = lights_[l];
+    const PointLight& light = lights_[std::get<PointSource>(source).index];
     const Vec3 pos = light.position;
-    LightLink link{q, l, Rgb{}, 0, 0};
+    LightLink link{q, id, Rgb{}, 0, 0};
     if (dot(pos - h_.triangle[q][0], h_.normal[q]) <= 0)
         return link;
     const ProfileRange profile = profile_range(light, h_.triangle[q]);
@@ -157,7 +159,7 @@ LightLink LinkSet::make_light_link(std::uint32_t q, std::uint32_t l) const {
 LightLink LinkSet::make_sun_link(std::uint32_t q) const {
     const SunIrradiance s = sun_triangle_irradiance(*sun_, oriented(h_, q), settings_.offset,
                                                     h_.diagonal, q, 1, visibility_, settings_.rows);
-    return {q, std::uint32_t(lights_.size()), s.irradiance, 0, std::uint8_t(s.partial ? 1 : 0)};
+    return {q, LightId(SunSource{}), s.irradiance, 0, std::uint8_t(s.partial ? 1 : 0)};
 }
 
 bool LinkSet::linkable(std::uint32_t q, std::uint32_t p) const {
@@ -192,10 +194,15 @@ void LinkSet::restore(std::span<const Link> links, std::span<const ClusterLink> 
 void LinkSet::link_lights() {
     const std::size_t r = h_.root_count;
     light_links_.clear();
-    for (std::uint32_t l = 0; l < lights_.size() + (sun_ ? 1 : 0); ++l) { // the sun last
+    std::vector<LightId> lights;
+    for (std::uint32_t l = 0; l < lights_.size(); ++l)
+        lights.emplace_back(PointSource{l});
+    if (sun_)
+        lights.emplace_back(SunSource{}); // the sun last
+    for (const LightId light : lights) {
         std::vector<LightLink> made(r);
-        parallel_for_index(r, 64,
-                           [&](std::size_t q) { made[q] = make_light_link(std::uint32_t(q), l); });
+        parallel_for_index(
+            r, 64, [&](std::size_t q) { made[q] = make_light_link(std::uint32_t(q), light); });
         for (const LightLink& link : made)
             if (!link.irradiance.is_black())
                 light_links_.push_back(link);

@@ -80,7 +80,7 @@ public:
         return out;
     }
     /// What the sun's links deliver, Σ irradiance × receiver area (W per channel).
-    RgbD sun_power() const { return store_.sun_power(h_, std::uint32_t(lights_.size())); }
+    RgbD sun_power() const { return store_.sun_power(h_); }
 
 private:
     Link make_link(std::uint32_t receiver, std::uint32_t source) const;
@@ -92,7 +92,7 @@ private:
     /// links_[0, first) are as receiver_offsets() indexed them, and a pair's link the other
     /// way found there is used too.
     void make_pair_links(std::size_t first, bool indexed);
-    LightLink make_light_link(std::uint32_t receiver, std::uint32_t light) const;
+    LightLink make_light_link(std::uint32_t receiver, LightId light) const;
     LightLink make_sun_link(std::uint32_t receiver) const;
     void subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<float>& b_range);
     bool refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
@@ -259,7 +259,7 @@ private:
     const ClusterTree* tree_ = nullptr; ///< of tables_, null without clusters
     const VisibilityQuery& visibility_;
     const std::vector<PointLight>& lights_;
-    const Sun* sun_ = nullptr; ///< light index lights_.size() in light links
+    const Sun* sun_ = nullptr; ///< null without a sun
     RefineSettings settings_;
     /// Within one refine(), per link: its oracle already said keep. Radiosities do not change
     /// during refine() and new nodes take their parent's values, so it would say keep again:

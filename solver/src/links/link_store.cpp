@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <variant>
 
 #include <tbb/parallel_sort.h>
 
@@ -24,10 +25,10 @@ const Link* LinkStore::find_link(std::uint32_t receiver, std::uint32_t source,
     return it != end && it->source == source ? &*it : nullptr;
 }
 
-RgbD LinkStore::sun_power(const Hierarchy& h, std::uint32_t sun) const {
+RgbD LinkStore::sun_power(const Hierarchy& h) const {
     RgbD sum;
     for (const LightLink& l : light_links_)
-        if (l.light == sun)
+        if (std::holds_alternative<SunSource>(l.light.source()))
             sum += RgbD(l.irradiance) * h.area[l.receiver];
     return sum;
 }

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/light.h"
 #include "core/mesh.h"
 #include "hierarchy/cluster_tree.h"
 #include "hierarchy/hierarchy.h"
@@ -39,8 +40,8 @@ private:
 static_assert(sizeof(Link) == 16);
 
 struct LightLink {
-    /// light: index into the point lights, or their count for the sun.
-    std::uint32_t receiver = 0, light = 0;
+    std::uint32_t receiver = 0;
+    LightId light{SunSource{}}; ///< a point light or the sun
     /// I Ω V / A of the receiver, W/m² (Ω weighted by a spot's profile); the sun's
     /// irradiance · cos θ · V
     Rgb irradiance;
@@ -48,6 +49,7 @@ struct LightLink {
     float spread = 0;
     std::uint8_t partial = 0; ///< partly occluded, or across a spot's hard cone edge
 };
+static_assert(sizeof(LightLink) == 28);
 
 /// The spread of an exact link that ClusterLink::unresolved().
 inline constexpr float k_unresolved = std::numeric_limits<float>::max();
@@ -120,7 +122,7 @@ public:
     }
     /// What the sun's links (light index \p sun) deliver, Σ irradiance × receiver area (W
     /// per channel): the sun's power in the balance.
-    RgbD sun_power(const Hierarchy& h, std::uint32_t sun) const;
+    RgbD sun_power(const Hierarchy& h) const;
     /// Moves the element links (or the cluster links) out, leaving the store without them.
     MappedArray<Link> take_links() { return std::exchange(links_, {}); }
     MappedArray<ClusterLink> take_cluster_links() { return std::exchange(cluster_links_, {}); }

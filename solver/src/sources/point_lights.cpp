@@ -71,10 +71,10 @@ Vec3 sample_cap(const Vec3& axis, double cos_max, double u1, double u2) {
 }
 
 double visible_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
-                        const Vec3& light, std::size_t light_id, std::uint32_t j,
+                        const Vec3& light, PointSource id, std::uint32_t j,
                         const RowSettings& settings) {
     Pcg32 rng =
-        Pcg32::for_stream(RngPurpose::point_light_visibility, light_id, j, 0, settings.seed);
+        Pcg32::for_stream(RngPurpose::point_light_visibility, id.index, j, 0, settings.seed);
     const int rays = std::max(1, settings.visibility_rays);
     return double(light_rays_open(light, geo.oriented(j), geo.offset, rays, visibility, rng)) /
            double(rays);
@@ -147,8 +147,8 @@ int light_rays_open(const Vec3& light, const OrientedTriangle& target, double of
 }
 
 double light_escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
-                             const PointLight& light, std::size_t light_id, std::uint64_t seed) {
-    Pcg32 rng = Pcg32::for_stream(RngPurpose::escape_estimate, light_id, 1, 0, seed);
+                             const PointLight& light, PointSource id, std::uint64_t seed) {
+    Pcg32 rng = Pcg32::for_stream(RngPurpose::escape_estimate, id.index, 1, 0, seed);
     std::vector<Segment> segments(k_escape_rays_per_light);
     std::vector<double> weight(segments.size(), 1.0);
     const float reach = float(4.0 * geo.diagonal + 1.0);
@@ -179,19 +179,20 @@ double light_escape_fraction(const ElementGeometry& geo, const VisibilityQuery& 
 void shoot_point_lights(ShootingState& state, const ElementGeometry& geo,
                         const std::vector<PointLight>& lights, const VisibilityQuery& visibility,
                         const RowSettings& settings, const Context& ctx) {
-    for (std::size_t l = 0; l < lights.size(); ++l) {
+    for (std::uint32_t l = 0; l < lights.size(); ++l) {
         const PointLight& light = lights[l];
+        const PointSource id{l};
         const Vec3 p = light.position;
         const RgbD power = light.power();
         state.emitted += power;
-        state.escaped += power * light_escape_fraction(geo, visibility, light, l, settings.seed);
+        state.escaped += power * light_escape_fraction(geo, visibility, light, id, settings.seed);
         parallel_for_index(geo.size(), 64, [&](std::size_t j) {
             if (dot(p - geo.triangle[j][0], geo.normal[j]) <= 0)
                 return; // the light is behind this side
             double omega = profile_solid_angle_triangle(light, geo.triangle[j]);
             if (omega <= 0)
                 return; // outside a spot's cone
-            omega *= visible_fraction(geo, visibility, p, l, std::uint32_t(j), settings);
+            omega *= visible_fraction(geo, visibility, p, id, std::uint32_t(j), settings);
             state.receive(j, light.intensity * float(omega / geo.area[j]), Rgb{});
         });
         ctx.debug("point light '{}' shot", light.name);

@@ -35,10 +35,11 @@ double profile_solid_angle_triangle(const PointLight& light, const std::array<Ve
 int light_rays_open(const Vec3& light, const OrientedTriangle& target, double offset, int rays,
                     const VisibilityQuery& visibility, Pcg32& rng);
 
-/// \brief Fraction of a point light's power that leaves the scene, from its own rays (a
-///        spot's uniformly over its cut-off cone, each weighted by the profile).
+/// \brief Fraction of the power of \p light (the scene's point light \p id) that leaves the
+///        scene, from its own rays (a spot's uniformly over its cut-off cone, each weighted by
+///        the profile).
 double light_escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
-                             const PointLight& light, std::size_t light_id, std::uint64_t seed);
+                             const PointLight& light, PointSource id, std::uint64_t seed);
 
 /// \brief Shoots every point light once: element j receives I·Ω_j·V_j / A_j, with Ω_j the
 ///        profile-weighted solid angle of j (profile_solid_angle_triangle; exact for an

@@ -34,7 +34,8 @@ void write_sensors_vtp(const std::string& path, const Scene& scene,
                        const std::vector<SensorReading>& readings);
 
 /// \brief Writes the discontinuity segments of \p mesh as a .vtp of lines with cell data
-///        order, source and surface (see DiscontinuitySegment).
+///        order, source and surface (see DiscontinuitySegment). source is the emitting
+///        polygon's index for an area source, −1 for the sun and −2 − i for point light i.
 void write_discontinuities_vtp(const std::string& path, const RadiosityMesh& mesh);
 
 /// \brief One step of a .pvd collection: a time value and a file relative to the .pvd.

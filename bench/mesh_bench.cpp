@@ -116,8 +116,9 @@ std::uint64_t fingerprint(const RadiosityMesh& m) {
         per_surface.insert(per_surface.end(),
                            {double(s.polygon), s.area_m2, s.hidden_front_m2, s.hidden_back_m2});
     for (const DiscontinuitySegment& d : m.discontinuities)
-        segments.insert(segments.end(), {d.a.x, d.a.y, d.a.z, d.b.x, d.b.y, d.b.z,
-                                         double(d.surface), double(d.source), double(d.order)});
+        segments.insert(segments.end(),
+                        {d.a.x, d.a.y, d.a.z, d.b.x, d.b.y, d.b.z, double(d.surface),
+                         double(source_code(d.source)), double(d.order)});
     h = hash_bytes(h, per_patch);
     h = hash_bytes(h, per_surface);
     return hash_bytes(h, segments);

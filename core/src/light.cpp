@@ -80,6 +80,16 @@ std::string describe(const LightSource& source) {
         source);
 }
 
+int source_code(const LightSource& source) {
+    if (const auto* area = std::get_if<AreaSource>(&source))
+        return int(area->polygon);
+    if (const auto* point = std::get_if<PointSource>(&source))
+        return -2 - int(point->index);
+    if (std::holds_alternative<SunSource>(source))
+        return -1;
+    throw InternalError(fmt::format("no source code for {}", describe(source)));
+}
+
 LightId::LightId(const LightSource& source) {
     const std::uint32_t index = source_index(source);
     if (index > k_index_mask)

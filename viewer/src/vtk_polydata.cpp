@@ -39,17 +39,6 @@ void write_polydata(const std::string& path, vtkPolyData* data) {
 
 // The `source` value of a discontinuity segment: the polygon's index for an area source, −1
 // for the sun, −2 − i for point light i (the documented values of discontinuities.vtp).
-int source_value(const LightSource& source) {
-    if (const auto* area = std::get_if<AreaSource>(&source))
-        return int(area->polygon);
-    if (const auto* point = std::get_if<PointSource>(&source))
-        return -2 - int(point->index);
-    if (std::holds_alternative<SunSource>(source))
-        return -1;
-    throw InternalError(
-        fmt::format("discontinuities.vtp has no source value for {}", describe(source)));
-}
-
 void add_sensor_arrays(vtkPointData* data, const Scene& scene,
                        const std::vector<SensorReading>& readings) {
     const std::size_t n = readings.size();
@@ -115,7 +104,7 @@ void write_discontinuities_vtp(const std::string& path, const RadiosityMesh& mes
     add_scalar<vtkIntArray>(data->GetCellData(), "order", n,
                             [&](std::size_t i) { return segments[i].order; });
     add_scalar<vtkIntArray>(data->GetCellData(), "source", n,
-                            [&](std::size_t i) { return source_value(segments[i].source); });
+                            [&](std::size_t i) { return source_code(segments[i].source); });
     add_scalar<vtkIntArray>(data->GetCellData(), "surface", n,
                             [&](std::size_t i) { return int(segments[i].surface); });
     write_polydata(path, data);

@@ -97,6 +97,11 @@ bool at_infinity(const LightSource& source);
 /// \brief "polygon 3", "point light 0", "the sun" or "the sky", for messages.
 std::string describe(const LightSource& source);
 
+/// \brief The integer discontinuities.vtp writes for \p source (its `source` cell array, as
+///        documented in README.md): the polygon's index, −1 for the sun, −2 − i for point
+///        light i. \throws InternalError for the sky, which has no code yet.
+int source_code(const LightSource& source);
+
 /// \brief A LightSource packed into 32 bits (its kind in the top two bits, its index
 ///        below), for arrays where the variant's 8 bytes would cost (the solver's light links).
 class LightId {

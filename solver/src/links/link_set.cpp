@@ -118,7 +118,8 @@ LightLink LinkSet::make_light_link(std::uint32_t q, LightId id) const {
     const LightSource source = id.source();
     if (std::holds_alternative<SunSource>(source))
         return make_sun_link(q);
-    const PointLight& light = lights_[std::get<PointSource>(source).index];
+    const std::uint32_t l = std::get<PointSource>(source).index;
+    const PointLight& light = lights_[l];
     const Vec3 pos = light.position;
     LightLink link{q, id, Rgb{}, 0, 0};
     if (dot(pos - h_.triangle[q][0], h_.normal[q]) <= 0)

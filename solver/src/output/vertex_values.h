@@ -36,7 +36,9 @@ struct EmitterLists {
 
 /// \brief Packs element results and reconstructs vertex values: direct irradiance gathered at
 ///        each vertex itself (Wallace et al. 1989's vertex receivers), indirect as the
-///        area-weighted mean of the vertex's elements, B = E + ρ H.
+///        area-weighted mean of the vertex's elements, B = E + ρ H. A vertex on its
+///        surface's boundary gathers from a point just inside its elements (its surface's
+///        limit there: a surface meeting it at a contact line would block its rays).
 /// \p emitters: where the vertices gather direct light from, if not \p mesh's own emitting
 /// elements: the same surfaces in fewer elements (hierarchical radiosity passes the roots, so
 /// that the rays per vertex do not grow with the emitters' refinement; emission is uniform

@@ -113,7 +113,22 @@ Vec3 gather_position(const RadiosityMesh& mesh, std::uint32_t v,
     return p + inward * (std::min(inset, 0.5 * nearest) / len);
 }
 
+// The inset of boundary vertices' gathers, in ray offsets: the inset point's rays, lifted
+// by at most two offsets, stay clear of a surface meeting the vertex's at any but a grazing
+// angle.
+constexpr double k_inset_offsets = 10.0;
+
 } // namespace
+
+std::vector<Vec3> vertex_gather_positions(const RadiosityMesh& mesh, double ray_offset) {
+    const VertexElements around = vertex_elements(mesh);
+    std::vector<Vec3> out(mesh.vertex_count());
+    for (std::size_t v = 0; v < out.size(); ++v)
+        out[v] = gather_position(mesh, std::uint32_t(v), around.of(v),
+                                 mesh.patches[mesh.vertex_patch[v]].normal,
+                                 k_inset_offsets * ray_offset);
+    return out;
+}
 
 Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& result) {
     Solution sol;
@@ -146,9 +161,7 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
     const std::vector<Rgb> vertex_far =
         split ? area_weighted_vertex_mean(mesh, *emitters->far) : std::vector<Rgb>{};
     const VertexElements around = vertex_elements(mesh);
-    // Ten ray offsets: the inset point's rays, lifted by at most two offsets, stay clear of a
-    // surface meeting the vertex's at any but a grazing angle.
-    const double inset = 10.0 * geo.offset;
+    const double inset = k_inset_offsets * geo.offset;
     sol.vertex_irradiance_direct.resize(nv);
     sol.vertex_radiosity.resize(nv);
     ProgressStage progress(ctx, "vertex values");

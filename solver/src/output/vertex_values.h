@@ -24,6 +24,13 @@ GatherSources direct_sources(const Scene& scene, const std::vector<Rgb>& element
 ///        means of the elements around each vertex.
 Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& result);
 
+/// \brief Where each vertex of \p mesh gathers direct light in make_solution: the vertex
+///        itself, or, on its surface's boundary, a point 10 ray offsets (\p ray_offset) inside
+///        its elements (at most half way to their centroids): its surface's limit there. A
+///        surface meeting it at a contact line would otherwise block its rays and be seen
+///        edge-on.
+std::vector<Vec3> vertex_gather_positions(const RadiosityMesh& mesh, double ray_offset);
+
 /// Per element, a sorted list of emitting elements (CSR: element e's are
 /// roots[first[e], first[e + 1])).
 struct EmitterLists {

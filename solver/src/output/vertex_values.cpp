@@ -1,6 +1,9 @@
 #include "output/vertex_values.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <span>
 
 #include "core/parallel.h"
 
@@ -37,7 +40,95 @@ std::vector<Rgb> area_weighted_vertex_mean(const RadiosityMesh& mesh,
     return out;
 }
 
+/// Elements around each vertex (CSR: vertex v's are element[first[v], first[v + 1])).
+struct VertexElements {
+    std::vector<std::uint32_t> first, element;
+    std::span<const std::uint32_t> of(std::size_t v) const {
+        return std::span<const std::uint32_t>(element).subspan(first[v], first[v + 1] - first[v]);
+    }
+};
+
+VertexElements vertex_elements(const RadiosityMesh& mesh) {
+    VertexElements out;
+    out.first.assign(mesh.vertex_count() + 1, 0);
+    for (const auto& t : mesh.triangles)
+        for (std::uint32_t v : t)
+            ++out.first[v + 1];
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+        out.first[v + 1] += out.first[v];
+    out.element.resize(out.first.back());
+    std::vector<std::uint32_t> at(out.first.begin(), out.first.end() - 1);
+    for (std::size_t e = 0; e < mesh.element_count(); ++e)
+        for (std::uint32_t v : mesh.triangles[e])
+            out.element[at[v]++] = std::uint32_t(e);
+    return out;
+}
+
+// Whether an edge from v belongs to only one of v's elements: v is on its surface's boundary.
+bool on_boundary(const RadiosityMesh& mesh, std::uint32_t v,
+                 std::span<const std::uint32_t> elements) {
+    thread_local std::vector<std::uint32_t> ends;
+    ends.clear();
+    for (std::uint32_t e : elements)
+        for (std::uint32_t w : mesh.triangles[e])
+            if (w != v)
+                ends.push_back(w);
+    std::sort(ends.begin(), ends.end());
+    for (std::size_t i = 0; i < ends.size();) {
+        std::size_t j = i;
+        while (j < ends.size() && ends[j] == ends[i])
+            ++j;
+        if (j - i == 1)
+            return true;
+        i = j;
+    }
+    return false;
+}
+
+// Where vertex v gathers direct light from. A vertex on its surface's boundary may lie on
+// another surface that meets it there (a contact line, a room's corner): the rays from it
+// would start on that surface, or be lifted behind it, and it would be seen edge-on (form
+// factor 0 instead of the limit the surface's own points tend to). The vertex's value is that
+// limit, so it gathers from a point \p inset (at most half way to its elements' centroids)
+// into its elements.
+Vec3 gather_position(const RadiosityMesh& mesh, std::uint32_t v,
+                     std::span<const std::uint32_t> elements, const Vec3& normal, double inset) {
+    const Vec3 p = mesh.vertex(v);
+    if (!on_boundary(mesh, v, elements))
+        return p;
+    Vec3 inward{0, 0, 0};
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::uint32_t e : elements) {
+        const Vec3 to_centroid = mesh.centroid(e) - p;
+        const double d = length(to_centroid);
+        if (d <= 0)
+            continue;
+        inward += to_centroid / d;
+        nearest = std::min(nearest, d);
+    }
+    inward -= normal * dot(inward, normal);
+    const double len = length(inward);
+    if (len <= 0)
+        return p;
+    return p + inward * (std::min(inset, 0.5 * nearest) / len);
+}
+
+// The inset of boundary vertices' gathers, in ray offsets: the inset point's rays, lifted
+// by at most two offsets, stay clear of a surface meeting the vertex's at any but a grazing
+// angle.
+constexpr double k_inset_offsets = 10.0;
+
 } // namespace
+
+std::vector<Vec3> vertex_gather_positions(const RadiosityMesh& mesh, double ray_offset) {
+    const VertexElements around = vertex_elements(mesh);
+    std::vector<Vec3> out(mesh.vertex_count());
+    for (std::size_t v = 0; v < out.size(); ++v)
+        out[v] = gather_position(mesh, std::uint32_t(v), around.of(v),
+                                 mesh.patches[mesh.vertex_patch[v]].normal,
+                                 k_inset_offsets * ray_offset);
+    return out;
+}
 
 Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& result) {
     Solution sol;
@@ -67,22 +158,10 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
     const ElementGeometry& source_geo = emitters ? emitters->geo : geo;
     const std::size_t nv = mesh.vertex_count();
     const bool split = emitters && emitters->near && emitters->far;
-    std::vector<Rgb> vertex_far;
-    std::vector<std::uint32_t> first, adjacent; // elements around each vertex (CSR)
-    if (split) {
-        vertex_far = area_weighted_vertex_mean(mesh, *emitters->far);
-        first.assign(nv + 1, 0);
-        for (const auto& t : mesh.triangles)
-            for (std::uint32_t v : t)
-                ++first[v + 1];
-        for (std::size_t v = 0; v < nv; ++v)
-            first[v + 1] += first[v];
-        adjacent.resize(first.back());
-        std::vector<std::uint32_t> at(first.begin(), first.end() - 1);
-        for (std::size_t e = 0; e < mesh.element_count(); ++e)
-            for (std::uint32_t v : mesh.triangles[e])
-                adjacent[at[v]++] = std::uint32_t(e);
-    }
+    const std::vector<Rgb> vertex_far =
+        split ? area_weighted_vertex_mean(mesh, *emitters->far) : std::vector<Rgb>{};
+    const VertexElements around = vertex_elements(mesh);
+    const double inset = k_inset_offsets * geo.offset;
     sol.vertex_irradiance_direct.resize(nv);
     sol.vertex_radiosity.resize(nv);
     ProgressStage progress(ctx, "vertex values");
@@ -92,12 +171,13 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
         parallel_for_index(end - begin, 16, [&](std::size_t k) {
             const std::size_t v = begin + k;
             const Patch& patch = mesh.patches[mesh.vertex_patch[v]];
-            GatherPoint p{mesh.vertex(std::uint32_t(v)), patch.normal, v,
-                          RngPurpose::vertex_visibility};
+            GatherPoint p{
+                gather_position(mesh, std::uint32_t(v), around.of(v), patch.normal, inset),
+                patch.normal, v, RngPurpose::vertex_visibility};
             if (split) {
                 std::vector<std::uint32_t> near;
-                for (std::uint32_t k = first[v]; k < first[v + 1]; ++k) {
-                    const auto mine = emitters->near->of(adjacent[k]);
+                for (std::uint32_t e : around.of(v)) {
+                    const auto mine = emitters->near->of(e);
                     near.insert(near.end(), mine.begin(), mine.end());
                 }
                 std::sort(near.begin(), near.end());

@@ -24,6 +24,13 @@ GatherSources direct_sources(const Scene& scene, const std::vector<Rgb>& element
 ///        means of the elements around each vertex.
 Solution snapshot_solution(const RadiosityMesh& mesh, const ElementResult& result);
 
+/// \brief Where each vertex of \p mesh gathers direct light in make_solution: the vertex
+///        itself, or, on its surface's boundary, a point 10 ray offsets (\p ray_offset) inside
+///        its elements (at most half way to their centroids): its surface's limit there. A
+///        surface meeting it at a contact line would otherwise block its rays and be seen
+///        edge-on.
+std::vector<Vec3> vertex_gather_positions(const RadiosityMesh& mesh, double ray_offset);
+
 /// Per element, a sorted list of emitting elements (CSR: element e's are
 /// roots[first[e], first[e + 1])).
 struct EmitterLists {
@@ -36,7 +43,9 @@ struct EmitterLists {
 
 /// \brief Packs element results and reconstructs vertex values: direct irradiance gathered at
 ///        each vertex itself (Wallace et al. 1989's vertex receivers), indirect as the
-///        area-weighted mean of the vertex's elements, B = E + ρ H.
+///        area-weighted mean of the vertex's elements, B = E + ρ H. A vertex on its
+///        surface's boundary gathers from a point just inside its elements (its surface's
+///        limit there: a surface meeting it at a contact line would block its rays).
 /// \p emitters: where the vertices gather direct light from, if not \p mesh's own emitting
 /// elements: the same surfaces in fewer elements (hierarchical radiosity passes the roots, so
 /// that the rays per vertex do not grow with the emitters' refinement; emission is uniform

@@ -80,8 +80,9 @@ TEST(Contacts, NoSplittingWhenTurnedOff) {
     EXPECT_TRUE(test::element_straddles(mesh, floor, {2.13, 0.5, 0}, {2.13, 3.5, 0}, 1e-4));
     const auto wall = std::uint32_t(test::find_patch(mesh, 1));
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-        if (mesh.vertex_patch[v] == wall)
+        if (mesh.vertex_patch[v] == wall) { // gtest's macros are an if-else of their own
             EXPECT_GE(mesh.vertex(std::uint32_t(v)).z, 0.001 - 1e-7);
+        }
     }
 }
 

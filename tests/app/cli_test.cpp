@@ -9,6 +9,7 @@
 
 #include <sys/wait.h>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "common/test_util.h"
@@ -42,6 +43,16 @@ std::string good_scene(const std::string& extra = "") {
   ],
   "mesher": {"max_edge_length": 0.5})" +
            extra + "\n}\n";
+}
+
+// The keys that make a bake write sensors and a render: one sensor on the floor, a camera
+// and an image of \p width × \p height at \p spp.
+std::string sensor_and_camera(int width, int height, int spp) {
+    return fmt::format(R"(,
+  "sensors": [[0.5, 0.5, 0, 0, 0, 1]],
+  "camera": {{"eye": [0.5, -1.5, 0.6], "look_at": [0.5, 0.5, 0.3], "up": [0, 0, 1], "fov_deg": 50}},
+  "image": {{"width": {}, "height": {}, "spp": {}}})",
+                       width, height, spp);
 }
 
 class CliBadInput : public ::testing::Test {
@@ -198,10 +209,7 @@ TEST_F(CliBadInput, UnknownSolverChoice) {
 
 TEST(Cli, BakeWritesEveryOutput) {
     const fs::path dir = test::temp_dir("cli-ok");
-    write(dir / "ok.json", good_scene(R"(,
-  "sensors": [[0.5, 0.5, 0, 0, 0, 1]],
-  "camera": {"eye": [0.5, -1.5, 0.6], "look_at": [0.5, 0.5, 0.3], "up": [0, 0, 1], "fov_deg": 50},
-  "image": {"width": 32, "height": 24, "spp": 4})"));
+    write(dir / "ok.json", good_scene(sensor_and_camera(32, 24, 4)));
     const fs::path out = dir / "out";
     RunResult r = run_cli("bake " + (dir / "ok.json").string() + " -o " + out.string() + " -q");
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -251,10 +259,7 @@ TEST_F(CliBadInput, ReuseOfAMissingOrWrongState) {
 // leaves none of the earlier bake's files that it does not write itself.
 TEST(CliOutputs, RebakeRemovesTheEarlierBakesOtherFiles) {
     const fs::path dir = test::temp_dir("cli-rebake");
-    write(dir / "full.json", good_scene(R"(,
-  "sensors": [[0.5, 0.5, 0, 0, 0, 1]],
-  "camera": {"eye": [0.5, -1.5, 0.6], "look_at": [0.5, 0.5, 0.3], "up": [0, 0, 1], "fov_deg": 50},
-  "image": {"width": 16, "height": 12, "spp": 1})"));
+    write(dir / "full.json", good_scene(sensor_and_camera(16, 12, 1)));
     write(dir / "bare.json", good_scene());
     const fs::path out = dir / "out";
     RunResult r =

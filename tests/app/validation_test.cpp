@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "app/pipeline.h"
@@ -100,7 +101,8 @@ INSTANTIATE_TEST_SUITE_P(Howell, FormFactorPipeline,
                                                           {0, 0, 0},
                                                           {0, 1, 0},
                                                           {0, 0, 1},
-                                                          0.200044}));
+                                                          0.200044}),
+                         [](const auto& info) { return test::case_name(info.param.name); });
 
 // ---- Furnace (§2): closed box, uniform E and ρ → B = E / (1 − ρ) everywhere ----
 
@@ -162,7 +164,10 @@ TEST_P(Cie171Cube, FaceMeansOfDirectAndIndirectIlluminance) {
     EXPECT_NEAR(r.stats.power.relative_imbalance(), 0.0, 1e-3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Reflectances, Cie171Cube, ::testing::Values(0.2, 0.8, 0.95));
+INSTANTIATE_TEST_SUITE_P(Reflectances, Cie171Cube, ::testing::Values(0.2, 0.8, 0.95),
+                         [](const auto& info) {
+                             return test::case_name(fmt::format("{}", info.param));
+                         });
 
 // The same on the hierarchical solver (issue #4), within 0.5 %, on coarse roots (1 m) and
 // leaves (0.05 m²) at ε = 1e-2: links between coarse nodes must neither take the bright middle
@@ -183,7 +188,10 @@ TEST_P(Cie171CubeHierarchical, FaceMeansOfDirectAndIndirectIlluminance) {
     EXPECT_NEAR(r.stats.power.relative_imbalance(), 0.0, 5e-3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Reflectances, Cie171CubeHierarchical, ::testing::Values(0.2, 0.8, 0.95));
+INSTANTIATE_TEST_SUITE_P(Reflectances, Cie171CubeHierarchical, ::testing::Values(0.2, 0.8, 0.95),
+                         [](const auto& info) {
+                             return test::case_name(fmt::format("{}", info.param));
+                         });
 
 // ---- CIE 171 5.3 (§3): 1 × 1 m panel of 1000 cd/m² in the ceiling, all surfaces black ----
 
@@ -342,8 +350,8 @@ TEST_P(SpotOverBlackFloor, DirectIlluminanceIsIProfileCosOverDSquared) {
     EXPECT_NEAR(to_photometric(r.stats.power.escaped), 0.0, 1e-9 * flux_lm);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, SpotOverBlackFloor,
-                         ::testing::Values("hierarchical", "shooting"));
+INSTANTIATE_TEST_SUITE_P(Methods, SpotOverBlackFloor, ::testing::Values("hierarchical", "shooting"),
+                         [](const auto& info) { return test::case_name(info.param); });
 
 // The hierarchical oracle refines light links where the profile varies over the receiver: a
 // hard-edged spot (beam = cut-off) on coarse roots leaves every element the cone's edge
@@ -424,7 +432,8 @@ TEST_P(SpotInClosedRoom, AbsorbedEqualsSpotPower) {
 
 INSTANTIATE_TEST_SUITE_P(Methods, SpotInClosedRoom,
                          ::testing::Values(SpotRoomCase{"shooting", 1e-3},
-                                           SpotRoomCase{"hierarchical", 5e-3}));
+                                           SpotRoomCase{"hierarchical", 5e-3}),
+                         [](const auto& info) { return test::case_name(info.param.method); });
 
 // ---- The sun: direct illuminance E_n cos θ V and its power ----
 
@@ -517,7 +526,8 @@ TEST_P(SunOverBlackFloor, DirectIlluminanceIsEnCosThetaTimesVisibleDisc) {
     EXPECT_LT(std::abs(pb.relative_imbalance()), 1e-5);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, SunOverBlackFloor, ::testing::Values("hierarchical", "shooting"));
+INSTANTIATE_TEST_SUITE_P(Methods, SunOverBlackFloor, ::testing::Values("hierarchical", "shooting"),
+                         [](const auto& info) { return test::case_name(info.param); });
 
 // A closed grey room (ρ = 0.5, walls two-sided) with a 1 × 1 m window in the wall x = 0, the
 // sun at 35° altitude from −x: the power entering through the window, E_n A cos(window
@@ -574,7 +584,8 @@ TEST_P(SunThroughWindow, PowerBalances) {
     EXPECT_LT(std::abs(pb.relative_imbalance()), 5e-3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, SunThroughWindow, ::testing::Values("hierarchical", "shooting"));
+INSTANTIATE_TEST_SUITE_P(Methods, SunThroughWindow, ::testing::Values("hierarchical", "shooting"),
+                         [](const auto& info) { return test::case_name(info.param); });
 
 } // namespace
 } // namespace penumbra

@@ -1,5 +1,7 @@
 #include "common/test_util.h"
 
+#include <cctype>
+
 #include <array>
 #include <atomic>
 #include <cstdio>
@@ -11,6 +13,14 @@
 namespace penumbra::test {
 
 namespace fs = std::filesystem;
+
+std::string case_name(std::string_view label) {
+    std::string out(label);
+    for (char& c : out)
+        if (!std::isalnum(static_cast<unsigned char>(c)))
+            c = '_';
+    return out;
+}
 
 std::string source_path(const std::string& relative) {
     return (fs::path(PENUMBRA_SOURCE_DIR) / relative).string();

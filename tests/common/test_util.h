@@ -10,6 +10,10 @@
 namespace penumbra::test {
 
 /// Absolute path of a file in the source tree (e.g. "data/cornell/scene.json").
+/// \brief A test-case name for a parameter labelled \p label (for INSTANTIATE_TEST_SUITE_P's
+///        name generators): its letters and digits, every other character as '_'.
+std::string case_name(std::string_view label);
+
 std::string source_path(const std::string& relative);
 
 /// A fresh empty temporary folder, unique per call.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "app/pipeline.h"
@@ -126,7 +127,10 @@ TEST_P(HierarchicalFurnace, UniformEmissionAndReflectance) {
 // ancestors average over (each far surface is seen flatter from there): spread evenly, the
 // form factors such a leaf gathered summed to up to 1.5 and B was 9 % (ε = 1e-2) and 2.4 %
 // (ε = 1e-3) off; the leaf weights (hierarchy/leaf_weights.h) spread them by the leaf's own.
-INSTANTIATE_TEST_SUITE_P(Epsilon, HierarchicalFurnace, ::testing::Values(1.0, 1e-2, 1e-3));
+INSTANTIATE_TEST_SUITE_P(Epsilon, HierarchicalFurnace, ::testing::Values(1.0, 1e-2, 1e-3),
+                         [](const auto& info) {
+                             return test::case_name(fmt::format("{}", info.param));
+                         });
 
 // §3, CIE 171 5.6: a uniformly lit 4 × 4 m reflector (ρ = 0.3); the illuminance it causes at
 // points 3 m away, over its own illuminance × ρ, is the configuration factor.

@@ -129,7 +129,8 @@ TEST_P(IterationFurnace, UniformEmissionAndReflectance) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Iterations, IterationFurnace,
-                         ::testing::Values("gauss_seidel", "shooting"));
+                         ::testing::Values("gauss_seidel", "shooting"),
+                         [](const auto& info) { return test::case_name(info.param); });
 
 // Gauss–Seidel blocks and the shots' order depend on the scene alone.
 TEST(HierarchicalIterations, IdenticalFor1And2And4Threads) {

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/pipeline.h"
+#include "cli_checks.h"
 #include "core/error.h"
 #include "core/files.h"
 #include "core/scene_io.h"
@@ -153,11 +154,11 @@ int main(int argc, char** argv) {
         ->add_option(
             "--max-edge", bake.max_edge_m,
             "element size in metres: edges up to √2 × this (overrides mesher.max_edge_length)")
-        ->check(CLI::PositiveNumber);
+        ->check(app::positive_number());
     bake_cmd
         ->add_option("--residual", bake.residual,
                      "stop when unshot power / emitted power falls below this")
-        ->check(CLI::Range(1e-12, 0.999999));
+        ->check(app::number_in(1e-12, 0.999999));
     bake_cmd->add_flag("--no-render", bake.no_render, "skip the camera render");
     bake_cmd->add_option("--method", bake.method, "solver method (overrides solver.method)")
         ->check(CLI::IsMember(enum_names<SolverMethod>()));
@@ -165,11 +166,11 @@ int main(int argc, char** argv) {
         ->add_option("--epsilon", bake.epsilon,
                      "hierarchical: refinement threshold, relative to the brightest source's "
                      "exitance (overrides solver.epsilon)")
-        ->check(CLI::Range(1e-12, 1.0));
+        ->check(app::number_in(1e-12, 1.0));
     bake_cmd
         ->add_option("--min-area", bake.min_area_m2,
                      "hierarchical: smallest element area in m² (overrides solver.min_area)")
-        ->check(CLI::PositiveNumber);
+        ->check(app::positive_number());
     bake_cmd
         ->add_option("--clustering", bake.clustering,
                      "hierarchical: start from a cluster tree (on), from all pairs of mesh "
@@ -193,7 +194,7 @@ int main(int argc, char** argv) {
     bake_cmd
         ->add_option("--series", bake.series_every_shots,
                      "write the solution every K shots as series/mesh_*.vtu + series.pvd")
-        ->check(CLI::PositiveNumber);
+        ->check(app::positive_number());
     add_common_flags(*bake_cmd, common);
     std::string validate_scene_path;
     auto* validate_cmd = cli.add_subcommand("validate", "load and check a scene, write nothing");
@@ -223,7 +224,10 @@ int main(int argc, char** argv) {
     try {
         cli.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return cli.exit(e) == 0 ? k_ok : k_config;
+        if (e.get_exit_code() == 0) // --help, --version
+            return cli.exit(e);
+        std::fprintf(stderr, "%s\n", app::cli_error_line(e).c_str());
+        return k_config;
     }
     try {
         if (*bake_cmd)

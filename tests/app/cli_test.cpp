@@ -236,6 +236,26 @@ TEST(Cli, BakeWritesEveryOutput) {
     fs::remove_all(dir);
 }
 
+// Numeric flags take finite numbers in their range: NaN was silently ignored, and CLI11's
+// range message printed DBL_MAX in 300 digits without the error prefix (issue #32).
+TEST_F(CliBadInput, NonFiniteOrOutOfRangeFlagsAreOneLineErrors) {
+    write(dir_ / "ok.json", good_scene());
+    const fs::path out = dir_ / "out";
+    for (const char* flag :
+         {"--max-edge nan", "--epsilon nan", "--residual nan", "--min-area nan", "--max-edge inf",
+          "--max-edge 1e400", "--epsilon 5", "--min-area -1", "--series 0", "--method southwell"}) {
+        const RunResult r =
+            run_cli("bake " + (dir_ / "ok.json").string() + " -o " + out.string() + " " + flag);
+        EXPECT_EQ(r.exit_code, 3) << flag << ": " << r.err;
+        EXPECT_EQ(count_lines(r.err), 1) << flag << ": " << r.err;
+        EXPECT_EQ(r.err.rfind("penumbra: error: ", 0), 0u) << r.err;
+        const std::string name(flag, std::string(flag).find(' '));
+        EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+        EXPECT_LT(r.err.size(), 200u) << r.err;
+        EXPECT_FALSE(fs::exists(out)) << flag;
+    }
+}
+
 TEST_F(CliBadInput, ReuseOfAMissingOrWrongState) {
     write(dir_ / "ok.json", good_scene());
     const fs::path out = dir_ / "out";

@@ -211,6 +211,20 @@ void validate_polygon(const Scene& scene, const Polygon& polygon) {
         fail_polygon(scene, polygon, "zero-area face (collinear or repeated vertices)");
 }
 
+/// The largest radiance (W/(sr·m²)), intensity (W/sr) or irradiance (W/m²) a source may have:
+/// 13 orders above the sun's disc, and low enough that the solver's float sums of power over
+/// millions of elements stay finite (a radiance of 1e36 overflowed to NaN in the solve).
+constexpr double k_max_source_value = 1e20;
+
+bool within_source_range(const Rgb& c) {
+    return c.max_component() <= k_max_source_value;
+}
+
+std::string beyond_source_range(const Rgb& c, const char* unit) {
+    return fmt::format("{} {} exceeds the largest value a source may have, {:g}", format_rgb(c),
+                       unit, k_max_source_value);
+}
+
 void validate_material(const Scene& scene, const Material& m) {
     const std::string key = "materials." + m.name;
     bool reflectance_ok = true;
@@ -221,6 +235,8 @@ void validate_material(const Scene& scene, const Material& m) {
     check(m.emission.is_finite() && m.emission.r >= 0 && m.emission.g >= 0 && m.emission.b >= 0,
           scene, key + (m.emission_flux_lm ? ".emission_color" : ".emission"),
           "must be finite and >= 0, got " + format_rgb(m.emission));
+    check(within_source_range(m.emission), scene, key + ".emission",
+          beyond_source_range(m.emission, "W/(sr·m²)"));
     if (m.emission_flux_lm)
         check(std::isfinite(*m.emission_flux_lm) && *m.emission_flux_lm >= 0, scene,
               key + ".emission_flux_lm", fmt::format("must be >= 0, got {}", *m.emission_flux_lm));
@@ -248,6 +264,7 @@ void validate_sun(const Scene& scene, Sun& sun) {
     const Rgb& e = sun.irradiance;
     check(e.is_finite() && e.r >= 0 && e.g >= 0 && e.b >= 0, scene, "sun",
           "irradiance must be finite and >= 0, got " + format_rgb(e));
+    check(within_source_range(e), scene, "sun", beyond_source_range(e, "W/m²"));
     check(sun.angular_diameter_deg >= 0 && sun.angular_diameter_deg <= 10, scene,
           "sun.angular_diameter_deg",
           fmt::format("must be in [0, 10] degrees (the sun: 0.533), got {}",
@@ -262,6 +279,7 @@ void validate_lights_and_sensors(Scene& scene) {
         const Rgb& c = light.intensity;
         check(c.is_finite() && c.r >= 0 && c.g >= 0 && c.b >= 0, scene, key,
               "intensity must be finite and >= 0, got " + format_rgb(c));
+        check(within_source_range(c), scene, key, beyond_source_range(c, "W/sr"));
         if (light.spot)
             validate_spot(scene, *light.spot, key + ".spot");
     }
@@ -337,6 +355,12 @@ void resolve_emission_flux(Scene& scene) {
         check(to_photometric(m.emission) > 0, scene, key + ".emission_color",
               "has zero luminance, so it cannot carry a flux");
         m.emission = from_photometric(*m.emission_flux_lm / (k_pi * area), m.emission);
+        // A finite flux can still overflow the float radiance every stage reads.
+        check(m.emission.is_finite() && within_source_range(m.emission), scene,
+              key + ".emission_flux_lm",
+              fmt::format("{:g} lm over {:g} m² is a radiance beyond the largest a source may "
+                          "have, {:g} W/(sr·m²)",
+                          *m.emission_flux_lm, area, k_max_source_value));
     }
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -168,6 +169,22 @@ TEST(SceneIo, EmissionFluxLmBecomesRadiance) {
     Scene again = scene;
     validate_scene(again);
     EXPECT_EQ(again.materials[0].emission, scene.materials[0].emission);
+}
+
+// A flux whose radiance overflows the solve's float sums was accepted and became NaN (#32).
+TEST(SceneIo, FluxBeyondTheFloatRangeIsAnError) {
+    const std::string dir = test::temp_dir("scene-huge-flux");
+    for (const char* flux : {"1e39", "1e308"}) {
+        write_file(dir, "scene.json",
+                   fmt::format(R"json({{
+  "polygons": [{{"name": "a", "material": "panel",
+                 "vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]}}],
+  "materials": {{"panel": {{"emission_flux_lm": {}}}}}
+}})json",
+                               flux));
+        expect_input_error([&] { load_scene(dir + "/scene.json"); },
+                           {"scene.json", "'materials.panel.emission_flux_lm'", "largest"});
+    }
 }
 
 TEST(SceneIo, PointLightPhotometry) {

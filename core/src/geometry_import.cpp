@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <set>
+#include <sstream>
 
 #include <assimp/Importer.hpp>
 #include <assimp/material.h>
@@ -16,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/files.h"
 
 namespace penumbra {
 
@@ -134,11 +136,38 @@ ImportedGeometry collect_materials(const aiScene& scene, std::vector<Polygon> po
 
 } // namespace
 
+namespace {
+
+// assimp imports an OBJ whose mtllib is missing with default materials and no word: every
+// emitter of the scene would be lost without a message.
+void check_obj_material_libraries(const std::string& path) {
+    const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    std::istringstream in(read_text_file(path));
+    int number = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++number;
+        std::istringstream tokens(line);
+        std::string keyword;
+        if (!(tokens >> keyword) || keyword != "mtllib")
+            continue;
+        for (std::string library; tokens >> library;) {
+            std::error_code ec;
+            if (!std::filesystem::is_regular_file(folder / library, ec))
+                throw InputError(path, "", fmt::format("material library '{}' not found", library),
+                                 number);
+        }
+    }
+}
+
+} // namespace
+
 ImportedGeometry import_geometry(const std::string& path, const std::string& label,
                                  double metres_per_unit) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         throw InputError(path, "geometry", "geometry file not found");
+    if (std::filesystem::path(path).extension() == ".obj")
+        check_obj_material_libraries(path);
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(path, 0); // no post-processing, see above
     if (!scene || !scene->mRootNode)

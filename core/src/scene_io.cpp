@@ -66,6 +66,10 @@ void add_geometry_file(Scene& scene, const std::string& base_dir, const std::str
                        double metres_per_unit) {
     const std::string path = resolve(base_dir, file);
     std::error_code ec;
+    if (fs::is_directory(path, ec))
+        throw InputError(
+            path, "geometry",
+            fmt::format("is a folder, not a geometry file (listed in '{}')", scene.file));
     if (!fs::is_regular_file(path, ec))
         throw InputError(path, "geometry",
                          fmt::format("geometry file not found (listed in '{}')", scene.file));
@@ -111,6 +115,13 @@ void add_inline_polygons(Scene& scene, const std::vector<PolygonSpec>& specs) {
     }
 }
 
+/// At most this many characters of a bad input line are quoted in a message.
+constexpr std::size_t k_quoted_chars = 80;
+
+std::string echoed_line(const std::string& line) {
+    return line.size() <= k_quoted_chars ? line : line.substr(0, k_quoted_chars) + "…";
+}
+
 /// One Radiance-style sensor line "x y z nx ny nz"; false if it does not hold 6 numbers.
 bool parse_sensor_line(const std::string& line, double metres_per_unit, Sensor& sensor) {
     std::istringstream tokens(line);
@@ -142,9 +153,10 @@ std::vector<Sensor> read_sensor_file(const std::string& path, double metres_per_
             continue;
         Sensor sensor;
         if (!parse_sensor_line(line, metres_per_unit, sensor))
-            throw InputError(path, "",
-                             fmt::format("expected 6 numbers 'x y z nx ny nz', got '{}'", line),
-                             number);
+            throw InputError(
+                path, "",
+                fmt::format("expected 6 numbers 'x y z nx ny nz', got '{}'", echoed_line(line)),
+                number);
         if (length(sensor.normal) == 0)
             throw InputError(path, "", "the sensor normal is zero", number);
         sensor.normal = normalize(sensor.normal);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <initializer_list>
@@ -526,6 +527,32 @@ TEST(SceneIo, MissingFilesNameTheFile) {
     write_file(dir, "broken.json", R"json({"geometry": "broken.obj"})json");
     expect_input_error([&] { load_scene(dir + "/broken.json"); },
                        {"broken.obj", "'geometry'", "vertex index out of range"});
+}
+
+// Issue #32: a missing mtllib gave default materials without a word, a folder was "not found",
+// and a bad sensor line was quoted whole (10 MB).
+TEST(SceneIo, MissingMaterialLibraryFolderAndLongLinesAreClearErrors) {
+    const std::string dir = test::temp_dir("scene-missing-mtl");
+    write_file(dir, "room.obj", "# a room\nmtllib room.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    write_file(dir, "scene.json", R"json({"geometry": "room.obj"})json");
+    expect_input_error([&] { load_scene(dir + "/scene.json"); },
+                       {"room.obj:2", "material library 'room.mtl' not found"});
+    std::filesystem::create_directories(dir + "/folder.obj");
+    write_file(dir, "folder.json", R"json({"geometry": "folder.obj"})json");
+    expect_input_error([&] { load_scene(dir + "/folder.json"); },
+                       {"folder.obj", "'geometry'", "is a folder"});
+    write_file(dir, "long.pts", "1 2 3 " + std::string(100000, 'x') + "\n");
+    write_file(dir, "long.json",
+               R"json({"polygons": [{"material": "m", "vertices": [[0,0,0],[1,0,0],[0,1,0]]}],
+  "materials": {"m": {"emission": 1}},
+  "sensors": {"file": "long.pts"}})json");
+    try {
+        load_scene(dir + "/long.json");
+        ADD_FAILURE() << "no InputError thrown";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("long.pts:1"), std::string::npos) << e.what();
+        EXPECT_LT(std::string(e.what()).size(), 300u);
+    }
 }
 
 TEST(SceneIo, MalformedJsonNamesTheLine) {

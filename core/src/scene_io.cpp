@@ -202,16 +202,30 @@ double polygon_area_m2(const Polygon& polygon) {
     throw InputError(scene.file, key, fmt::format("polygon '{}'{}: {}", polygon.name, where, what));
 }
 
+/// Positions lie at most this far from the origin, metres: the solver's float geometry and its
+/// squared distances stay finite (a sensor at 1e308 m gave a row of NaN).
+constexpr double k_max_coordinate_m = 1e9;
+
+/// Finite and within k_max_coordinate_m of the origin in every axis.
+bool in_world(const Vec3& p) {
+    return is_finite(p) && std::abs(p.x) <= k_max_coordinate_m &&
+           std::abs(p.y) <= k_max_coordinate_m && std::abs(p.z) <= k_max_coordinate_m;
+}
+
+std::string outside_world(const Vec3& p) {
+    return fmt::format("must be finite and within {:g} m of the origin, got {}", k_max_coordinate_m,
+                       format_vec(p));
+}
+
 void validate_polygon(const Scene& scene, const Polygon& polygon) {
     const std::size_t count = polygon.vertices.size();
     if (count < 3)
         fail_polygon(scene, polygon, fmt::format("has {} vertices, needs at least 3", count));
     BBox box;
     for (std::size_t i = 0; i < count; ++i) {
-        if (!is_finite(polygon.vertices[i]))
-            fail_polygon(
-                scene, polygon,
-                fmt::format("vertex {} is not finite {}", i + 1, format_vec(polygon.vertices[i])));
+        if (!in_world(polygon.vertices[i]))
+            fail_polygon(scene, polygon,
+                         fmt::format("vertex {} {}", i + 1, outside_world(polygon.vertices[i])));
         box.extend(polygon.vertices[i]);
     }
     if (polygon.material >= scene.materials.size())
@@ -287,7 +301,7 @@ void validate_lights_and_sensors(Scene& scene) {
     for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
         PointLight& light = scene.point_lights[i];
         const std::string key = fmt::format("point_lights[{}]", i);
-        check(is_finite(light.position), scene, key + ".position", "is not finite");
+        check(in_world(light.position), scene, key + ".position", outside_world(light.position));
         const Rgb& c = light.intensity;
         check(c.is_finite() && c.r >= 0 && c.g >= 0 && c.b >= 0, scene, key,
               "intensity must be finite and >= 0, got " + format_rgb(c));
@@ -300,7 +314,7 @@ void validate_lights_and_sensors(Scene& scene) {
     for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
         Sensor& sensor = scene.sensors[i];
         const std::string key = fmt::format("sensors[{}]", i);
-        check(is_finite(sensor.position), scene, key + ".position", "is not finite");
+        check(in_world(sensor.position), scene, key + ".position", outside_world(sensor.position));
         check(is_finite(sensor.normal) && length(sensor.normal) > 0, scene, key + ".normal",
               "must be a finite, non-zero vector");
         sensor.normal = normalize(sensor.normal);
@@ -308,8 +322,8 @@ void validate_lights_and_sensors(Scene& scene) {
 }
 
 void validate_camera(const Scene& scene, const Camera& camera) {
-    check(is_finite(camera.eye), scene, "camera.eye", "is not finite");
-    check(is_finite(camera.look_at) && length(camera.look_at - camera.eye) > 0, scene,
+    check(in_world(camera.eye), scene, "camera.eye", outside_world(camera.eye));
+    check(in_world(camera.look_at) && length(camera.look_at - camera.eye) > 0, scene,
           "camera.look_at", "must be finite and differ from 'eye'");
     const Vec3 view = normalize(camera.look_at - camera.eye);
     check(is_finite(camera.up) && length(cross(normalize(camera.up), view)) > 1e-6, scene,
@@ -334,6 +348,12 @@ void validate_settings(const Scene& scene) {
     check(!mesher.contact_tolerance ||
               (std::isfinite(*mesher.contact_tolerance) && *mesher.contact_tolerance >= 0),
           scene, "mesher.contact_tolerance", "must be >= 0");
+    // A tolerance near the scene's size merges everything and hid the emitters (0 lm).
+    const double diagonal = scene.bounds().diagonal();
+    check(!mesher.contact_tolerance || *mesher.contact_tolerance <= 0.01 * diagonal, scene,
+          "mesher.contact_tolerance",
+          fmt::format("must be at most 1 % of the scene's diagonal ({:g} m), got {:g} m",
+                      0.01 * diagonal, mesher.contact_tolerance.value_or(0)));
     check(mesher.element_budget >= 0, scene, "mesher.element_budget",
           "must be >= 0 (0 = no limit)");
     check(mesher.discontinuity.max_order >= 0 && mesher.discontinuity.max_order <= 2, scene,

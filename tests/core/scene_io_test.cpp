@@ -529,6 +529,26 @@ TEST(SceneIo, MissingFilesNameTheFile) {
                        {"broken.obj", "'geometry'", "vertex index out of range"});
 }
 
+// Issue #32: a sensor or a camera at 1e308 m gave NaN (or blamed camera.up), and a contact
+// tolerance of 1e308 merged the emitter away: each is an error naming its key.
+TEST(SceneIo, PositionsAndToleranceOutOfRangeAreErrors) {
+    const std::string dir = test::temp_dir("scene-far");
+    const std::string room = R"json("polygons": [{"material": "m",
+      "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}],
+  "materials": {"m": {"emission": 1}})json";
+    const std::pair<const char*, const char*> cases[] = {
+        {R"json("sensors": [[1e308, 0, 0, 0, 0, 1]])json", "'sensors[0].position'"},
+        {R"json("camera": {"eye": [1e308, 0, 1], "look_at": [0, 0, 0]})json", "'camera.eye'"},
+        {R"json("point_lights": [{"position": [0, -1e10, 1], "intensity_cd": 1}])json",
+         "'point_lights[0].position'"},
+        {R"json("mesher": {"contact_tolerance": 1e308})json", "'mesher.contact_tolerance'"},
+    };
+    for (const auto& [keys, key] : cases) {
+        write_file(dir, "far.json", "{" + room + ",\n  " + keys + "}");
+        expect_input_error([&] { load_scene(dir + "/far.json"); }, {"far.json", key});
+    }
+}
+
 // Issue #32: a missing mtllib gave default materials without a word, a folder was "not found",
 // and a bad sensor line was quoted whole (10 MB).
 TEST(SceneIo, MissingMaterialLibraryFolderAndLongLinesAreClearErrors) {
@@ -609,7 +629,7 @@ TEST(SceneIo, BadGeometryIsReported) {
     write_file(dir, "nan.json", lamp_scene(R"json(, "geometry": "nan.obj")json"));
     expect_input_error(
         [&] { load_scene(dir + "/nan.json"); },
-        {"nan.json", "polygon 'wall'", "nan.obj:face 1", "vertex 3 is not finite", "(nan, 0, 0)"});
+        {"nan.json", "polygon 'wall'", "nan.obj:face 1", "vertex 3 must be finite", "(nan, 0, 0)"});
     write_file(dir, "flat.json", R"json({
   "polygons": [{"name": "sliver", "material": "lamp",
                 "vertices": [[0, 0, 0], [1, 1, 1], [2, 2, 2]]}],

@@ -107,6 +107,33 @@ std::size_t element_count(const std::vector<SurfaceTriangulation>& tris) {
     return n;
 }
 
+/// A size bound whose least element count exceeds the budget this many times is refused.
+constexpr double k_budget_overshoot = 4.0;
+
+// A lower bound of the elements a size bound makes: two triangles per square of its side on
+// every side of every surface (contacts and shadow boundaries only add to it).
+double least_elements(const std::vector<Surface>& surfaces, double max_edge) {
+    double n = 0;
+    for (const Surface& s : surfaces)
+        n += (s.two_sided ? 2.0 : 1.0) * 2.0 * s.area / (max_edge * max_edge);
+    return n;
+}
+
+// A size bound that would make far more elements than the budget is an error before meshing:
+// meshing first took minutes and gigabytes (--max-edge 1e-6) before the budget was looked at.
+// Near the budget, refine_within_budget grows the bound instead.
+void check_size_against_budget(const std::vector<Surface>& surfaces, const MeshParams& params,
+                               const std::string& scene_file) {
+    const double least = least_elements(surfaces, params.max_edge);
+    if (params.budget <= 0 || least <= k_budget_overshoot * double(params.budget))
+        return;
+    const double fits = params.max_edge * std::sqrt(least / double(params.budget));
+    throw ConfigError(fmt::format(
+        "{}: elements of {:.4g} m would make at least {:.3g} elements, over the budget of {} "
+        "(mesher.element_budget): use --max-edge {:.2g} or more, or a larger budget",
+        scene_file, params.max_edge, least, params.budget, fits));
+}
+
 // Refines every surface; grows the size bound while the element budget is exceeded. The
 // triangulators are freed by the attempt that is certainly the last.
 std::vector<SurfaceTriangulation> refine_within_budget(const std::vector<Surface>& surfaces,
@@ -189,6 +216,7 @@ RadiosityMesh build_mesh(const Scene& scene, const Context& ctx) {
     StageTimer timer(ctx);
     const MeshParams params = resolve_params(scene);
     const std::vector<Surface> surfaces = build_surfaces(scene, params, ctx);
+    check_size_against_budget(surfaces, params, scene.file);
     timer.lap("surfaces");
     const SurfaceBvh bvh(surfaces);
     timer.lap("surface bvh");

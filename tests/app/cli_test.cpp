@@ -256,6 +256,22 @@ TEST_F(CliBadInput, NonFiniteOrOutOfRangeFlagsAreOneLineErrors) {
     }
 }
 
+// An element size far below what the budget allows is refused before meshing (issue #32: the
+// Cornell box at --max-edge 1e-6 meshed for minutes into gigabytes).
+TEST(CliBudget, ElementSizeFarBelowTheBudgetIsRefusedBeforeMeshing) {
+    const std::string scene = test::source_path("data/cornell/scene.json");
+    const fs::path out = fs::path(test::temp_dir("cli-budget")) / "out";
+    for (const char* edge : {"1e-6", "1e-3"}) {
+        const RunResult r =
+            run_cli("bake " + scene + " -o " + out.string() + " --max-edge " + edge + " -q");
+        EXPECT_EQ(r.exit_code, 3) << r.err;
+        EXPECT_EQ(count_lines(r.err), 1) << r.err;
+        for (const char* part : {"scene.json", "mesher.element_budget", "--max-edge"})
+            EXPECT_NE(r.err.find(part), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(out));
+    }
+}
+
 TEST_F(CliBadInput, ReuseOfAMissingOrWrongState) {
     write(dir_ / "ok.json", good_scene());
     const fs::path out = dir_ / "out";

@@ -10,6 +10,7 @@
 #include <csignal>
 #include <vector>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -285,6 +286,8 @@ TEST(CliOutputs, RebakeRemovesTheEarlierBakesOtherFiles) {
 
 // Issue #32: `view --png /dev/full` replaced the device with a PNG, and `--png` onto a folder
 // said "cannot write …: Success". Neither is a regular file: refused by name, left as it was.
+// A fifo of the test's own stands for the device: a build without the check, run as root,
+// would otherwise replace the machine's /dev/null.
 TEST(CliOutputs, NeverReplacesWhatIsNotARegularFile) {
     const fs::path dir = test::temp_dir("cli_not_regular");
     write(dir / "ok.json", good_scene());
@@ -292,10 +295,12 @@ TEST(CliOutputs, NeverReplacesWhatIsNotARegularFile) {
     RunResult r =
         run_cli("bake " + (dir / "ok.json").string() + " -o " + out.string() + " --no-render -q");
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    r = run_cli("view " + out.string() + " --png /dev/null -q");
+    const fs::path fifo = dir / "device.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+    r = run_cli("view " + out.string() + " --png " + fifo.string() + " -q");
     EXPECT_EQ(r.exit_code, 3) << r.err;
-    EXPECT_NE(r.err.find("'/dev/null' is not a regular file"), std::string::npos) << r.err;
-    EXPECT_TRUE(fs::is_character_file("/dev/null"));
+    EXPECT_NE(r.err.find("device.png' is not a regular file"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::is_fifo(fifo));
 
     const fs::path folder = dir / "folder_out";
     fs::create_directories(folder / "mesh.vtu");

@@ -8,6 +8,7 @@
 #include <string>
 
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -53,8 +54,11 @@ TEST(Files, NeverReplacesAFolderOrADevice) {
     fs::create_directories(dir / "folder.txt");
     EXPECT_THROW(write_text_file((dir / "folder.txt").string(), "x"), ConfigError);
     EXPECT_TRUE(fs::is_directory(dir / "folder.txt"));
-    EXPECT_THROW(write_text_file("/dev/null", "x"), ConfigError);
-    EXPECT_TRUE(fs::is_character_file("/dev/null"));
+    // A fifo of the test's own, not /dev/null: a broken check must not replace a real device.
+    const fs::path fifo = dir / "device.txt";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+    EXPECT_THROW(write_text_file(fifo.string(), "x"), ConfigError);
+    EXPECT_TRUE(fs::is_fifo(fifo));
 }
 
 // What a SIGINT or SIGTERM handler calls removes the temporary file being written.

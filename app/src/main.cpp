@@ -1,6 +1,7 @@
 // penumbra: the command-line interface. Parses flags, builds the context, runs the pipeline
 // and maps errors to exit codes; nothing else lives here.
 
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
 #include "app/pipeline.h"
 #include "cli_checks.h"
@@ -29,8 +31,24 @@ enum ExitCode : int {
     k_external = 4,
     k_internal = 5,
     k_out_of_memory = 6,
-    k_cancelled = 130,
+    k_cancelled = 130,  // also SIGINT (128 + 2)
+    k_terminated = 143, // SIGTERM (128 + 15)
 };
+
+/// SIGINT and SIGTERM remove the temporary files of the outputs being written, then end the
+/// process with the shell's code for the signal; only async-signal-safe calls.
+extern "C" void on_terminating_signal(int signal) {
+    remove_temp_files_on_signal();
+    ::_exit(signal == SIGINT ? k_cancelled : k_terminated);
+}
+
+void install_signal_handlers() {
+    struct sigaction action {};
+    action.sa_handler = on_terminating_signal;
+    sigemptyset(&action.sa_mask);
+    for (int signal : {SIGINT, SIGTERM})
+        ::sigaction(signal, &action, nullptr);
+}
 
 struct CommonFlags {
     int threads = 0;
@@ -142,6 +160,7 @@ int report(const char* kind, const std::string& message, int code) {
 } // namespace
 
 int main(int argc, char** argv) {
+    install_signal_handlers();
     CLI::App cli{"Penumbra: radiosity-first lighting (mesh, solve, render, sensors, view)"};
     cli.require_subcommand(1);
     CommonFlags common;

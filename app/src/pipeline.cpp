@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/files.h"
 #include "mesher/mesher.h"
 #include "raytrace/raytrace.h"
 #include "viewer/view.h"
@@ -94,6 +95,11 @@ void write_outputs(const std::string& dir, const Scene& scene, const BakeResult&
     if (ec)
         throw ConfigError(fmt::format("cannot create output folder '{}': {}", dir, ec.message()));
     const OutputTarget target{scene, result, dir, save_state};
+    // Temporary files of a bake that was killed before it could remove them.
+    std::vector<std::string> names;
+    for (const OutputWriter& writer : bake_writers())
+        names.insert(names.end(), writer.files.begin(), writer.files.end());
+    remove_stale_temp_files(dir, names);
     // Files of an earlier bake that this one does not write would mix two bakes in the viewer.
     for (const OutputWriter& writer : bake_writers()) {
         if (writer.wanted(target))

@@ -1,11 +1,16 @@
 #include "core/files.h"
 
+#include <array>
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -16,16 +21,110 @@ namespace penumbra {
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr const char* k_temp_infix = ".tmp";
+
 std::string temp_name_for(const std::string& path) {
     fs::path p(path);
-    std::string name = "." + p.filename().string() + ".tmp" + std::to_string(::getpid());
+    std::string name = "." + p.filename().string() + k_temp_infix + std::to_string(::getpid());
     return (p.parent_path() / name).string();
 }
+
+// The temporary files being written, as C strings in fixed slots, so that a signal handler can
+// read them without locking or allocating. A slot is published (in_use set) only once its
+// path is complete; registration and release take the mutex among themselves.
+constexpr std::size_t k_temp_slots = 64;
+constexpr std::size_t k_temp_path_max = 4096;
+struct TempSlot {
+    std::atomic<bool> in_use{false};
+    char path[k_temp_path_max] = {};
+};
+std::array<TempSlot, k_temp_slots> g_temp_slots;
+std::mutex g_temp_mutex;
+
+/// Registers a temporary path for the lifetime of the object; a path too long for a slot, or
+/// one beyond the slots, is written but not registered (only its clean-up on a signal is lost).
+class TempRegistration {
+public:
+    explicit TempRegistration(const std::string& path) {
+        if (path.size() >= k_temp_path_max)
+            return;
+        const std::lock_guard lock(g_temp_mutex);
+        for (TempSlot& s : g_temp_slots)
+            if (!s.in_use.load(std::memory_order_relaxed)) {
+                std::memcpy(s.path, path.c_str(), path.size() + 1);
+                s.in_use.store(true, std::memory_order_release);
+                slot_ = &s;
+                return;
+            }
+    }
+    ~TempRegistration() {
+        if (!slot_)
+            return;
+        const std::lock_guard lock(g_temp_mutex);
+        slot_->in_use.store(false, std::memory_order_release);
+    }
+    TempRegistration(const TempRegistration&) = delete;
+    TempRegistration& operator=(const TempRegistration&) = delete;
+
+private:
+    TempSlot* slot_ = nullptr;
+};
+
+/// A device, folder or fifo at \p path is refused: renaming onto it would replace it.
+void check_replaceable(const std::string& path) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (fs::exists(status) && !fs::is_regular_file(status))
+        throw ConfigError(fmt::format("'{}' is not a regular file", path));
+}
+
+/// Writes all of \p bytes to a new file \p temp with POSIX calls, so that a failure's errno is
+/// taken from the call that failed ("No space left on device").
+void write_bytes(const std::string& temp, const std::string& path, const std::string& bytes) {
+    const auto fail = [&path](int error) {
+        throw ExternalError(fmt::format("cannot write '{}': {}", path, std::strerror(error)));
+    };
+    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0)
+        fail(errno);
+    for (std::size_t at = 0; at < bytes.size();) {
+        const ssize_t n = ::write(fd, bytes.data() + at, bytes.size() - at);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0) {
+            const int error = n < 0 ? errno : EIO;
+            ::close(fd);
+            fail(error);
+        }
+        at += std::size_t(n);
+    }
+    if (::close(fd) != 0)
+        fail(errno);
+}
+
+/// The PID of a temporary name ".NAME.tmpPID" for \p name, or 0 if \p file is not one.
+pid_t temp_pid(const std::string& file, const std::string& name) {
+    const std::string prefix = "." + name + k_temp_infix;
+    if (file.size() <= prefix.size() || file.compare(0, prefix.size(), prefix) != 0)
+        return 0;
+    const std::string digits = file.substr(prefix.size());
+    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+        return 0;
+    return pid_t(std::stol(digits));
+}
+
+bool process_alive(pid_t pid) {
+    return ::kill(pid, 0) == 0 || errno != ESRCH;
+}
+
 } // namespace
 
 void write_atomically(const std::string& path,
                       const std::function<void(const std::string& temp_path)>& write) {
+    check_replaceable(path);
     const std::string temp = temp_name_for(path);
+    const TempRegistration registration(temp);
     try {
         write(temp);
     } catch (...) {
@@ -36,19 +135,35 @@ void write_atomically(const std::string& path,
     std::error_code ec;
     fs::rename(temp, path, ec);
     if (ec) {
+        const std::string reason = ec.message();
         fs::remove(temp, ec);
-        throw ExternalError(fmt::format("cannot write '{}': {}", path, ec.message()));
+        throw ExternalError(fmt::format("cannot write '{}': {}", path, reason));
     }
 }
 
 void write_text_file(const std::string& path, const std::string& text) {
-    write_atomically(path, [&](const std::string& temp) {
-        std::ofstream out(temp, std::ios::binary);
-        out << text;
-        out.close();
-        if (!out)
-            throw ExternalError(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
-    });
+    write_atomically(path, [&](const std::string& temp) { write_bytes(temp, path, text); });
+}
+
+void remove_temp_files_on_signal() noexcept {
+    for (TempSlot& s : g_temp_slots)
+        if (s.in_use.load(std::memory_order_acquire))
+            ::unlink(s.path);
+}
+
+std::size_t remove_stale_temp_files(const std::string& dir, const std::vector<std::string>& names) {
+    std::error_code ec;
+    std::size_t removed = 0;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string file = it->path().filename().string();
+        for (const std::string& name : names) {
+            const pid_t pid = temp_pid(file, name);
+            if (pid > 0 && pid != ::getpid() && !process_alive(pid) && it->is_regular_file(ec) &&
+                fs::remove(it->path(), ec))
+                ++removed;
+        }
+    }
+    return removed;
 }
 
 std::string read_text_file(const std::string& path) {

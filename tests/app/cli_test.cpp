@@ -7,7 +7,12 @@
 #include <fstream>
 #include <string>
 
+#include <csignal>
+#include <vector>
+
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -313,6 +318,104 @@ TEST(CliOutputs, RebakeRemovesTheEarlierBakesOtherFiles) {
     for (const char* f : {"mesh.vtu", "summary.json", "notes.txt"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     fs::remove_all(dir);
+}
+
+// Issue #32: `view --png /dev/full` replaced the device with a PNG, and `--png` onto a folder
+// said "cannot write …: Success". Neither is a regular file: refused by name, left as it was.
+// A fifo of the test's own stands for the device: a build without the check, run as root,
+// would otherwise replace the machine's /dev/null.
+TEST(CliOutputs, NeverReplacesWhatIsNotARegularFile) {
+    const fs::path dir = test::temp_dir("cli_not_regular");
+    write(dir / "ok.json", good_scene());
+    const fs::path out = dir / "out";
+    RunResult r =
+        run_cli("bake " + (dir / "ok.json").string() + " -o " + out.string() + " --no-render -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const fs::path fifo = dir / "device.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+    r = run_cli("view " + out.string() + " --png " + fifo.string() + " -q");
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_NE(r.err.find("device.png' is not a regular file"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::is_fifo(fifo));
+
+    const fs::path folder = dir / "folder_out";
+    fs::create_directories(folder / "mesh.vtu");
+    r = run_cli("bake " + (dir / "ok.json").string() + " -o " + folder.string() +
+                " --no-render -q");
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_NE(r.err.find("mesh.vtu' is not a regular file"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("Success"), std::string::npos) << r.err;
+    EXPECT_TRUE(fs::is_directory(folder / "mesh.vtu"));
+}
+
+// The temporary files ".NAME.tmpPID" in \p dir.
+std::vector<fs::path> temp_files(const fs::path& dir) {
+    std::vector<fs::path> found;
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+        if (it->path().filename().string().find(".tmp") != std::string::npos)
+            found.push_back(it->path());
+    return found;
+}
+
+// Issue #32: SIGTERM while an output is written left its temporary file. The bake is sent
+// SIGTERM as soon as a temporary file appears; it must exit with 143 and leave none. A bake
+// that ends before one is seen is tried again (the write is a race by nature).
+TEST(CliOutputs, SigtermWhileWritingLeavesNoTemporaryFile) {
+    const fs::path dir = test::temp_dir("cli_sigterm");
+    write(dir / "big.json", good_scene().replace(good_scene().find("0.5}"), 4, "0.02}"));
+    bool caught = false;
+    for (int attempt = 0; attempt < 10 && !caught; ++attempt) {
+        const fs::path out = dir / ("out" + std::to_string(attempt));
+        fs::create_directories(out);
+        const pid_t pid = ::fork();
+        ASSERT_GE(pid, 0);
+        if (pid == 0) {
+            std::freopen("/dev/null", "w", stderr);
+            ::execl(PENUMBRA_CLI, PENUMBRA_CLI, "bake", (dir / "big.json").c_str(), "-o",
+                    out.c_str(), "--no-render", "-q", static_cast<char*>(nullptr));
+            ::_exit(127);
+        }
+        int status = 0;
+        while (::waitpid(pid, &status, WNOHANG) == 0) {
+            if (!temp_files(out).empty()) {
+                ::kill(pid, SIGTERM);
+                ::waitpid(pid, &status, 0);
+                caught = true;
+                break;
+            }
+        }
+        if (caught) {
+            ASSERT_TRUE(WIFEXITED(status));
+            EXPECT_EQ(WEXITSTATUS(status), 143);
+            EXPECT_TRUE(temp_files(out).empty());
+        }
+    }
+    EXPECT_TRUE(caught) << "no bake was seen writing a temporary file";
+}
+
+// A temporary file of a killed bake (its PID no longer alive) is removed by the next bake into
+// the same folder; one whose process is alive (this test's) is left alone.
+TEST(CliOutputs, BakeRemovesStaleTemporaryFiles) {
+    const fs::path dir = test::temp_dir("cli_stale_temp");
+    write(dir / "ok.json", good_scene());
+    const fs::path out = dir / "out";
+    fs::create_directories(out);
+    const pid_t dead = ::fork(); // a PID certainly not alive once reaped
+    if (dead == 0)
+        ::_exit(0);
+    ::waitpid(dead, nullptr, 0);
+    const fs::path stale = out / (".mesh.vtu.tmp" + std::to_string(dead));
+    const fs::path live = out / (".solver_state.bin.tmp" + std::to_string(::getpid()));
+    const fs::path other = out / (".notes.txt.tmp" + std::to_string(dead));
+    for (const fs::path& p : {stale, live, other})
+        write(p, "partial");
+    const RunResult r =
+        run_cli("bake " + (dir / "ok.json").string() + " -o " + out.string() + " --no-render -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_FALSE(fs::exists(stale));
+    EXPECT_TRUE(fs::exists(live));
+    EXPECT_TRUE(fs::exists(other)); // not one of our outputs
 }
 
 } // namespace

@@ -11,7 +11,9 @@
 #include "common/bake_util.h"
 #include "common/test_util.h"
 #include "core/error.h"
+#include "core/files.h"
 #include "core/scene_io.h"
+#include "state/solver_state.h"
 
 namespace penumbra {
 namespace {
@@ -125,6 +127,36 @@ TEST(Reuse, StateFileRoundTrips) {
     for (std::size_t e = 0; e < from_file.solution.radiosity.size(); ++e)
         ASSERT_EQ(from_file.solution.radiosity[e], from_memory.solution.radiosity[e]);
     EXPECT_THROW(solver::read_hierarchical_state(dir + "/summary.json"), InputError);
+}
+
+// Issue #32: a state file with a few corrupted bytes was accepted (21 of 34 corruptions) and
+// gave NaN sensors; its checksum now refuses any one corrupted byte, and an intact file reads.
+TEST(Reuse, StateFileRefusesEveryCorruptedByte) {
+    const Scene scene = coarse_cornell();
+    const app::BakeResult first = bake(scene);
+    const std::string dir = test::temp_dir("reuse_corrupt");
+    app::write_outputs(dir, scene, first);
+    const std::string path = dir + "/" + app::k_solver_state_file;
+    const std::string intact = read_text_file(path);
+    constexpr std::size_t k_positions = 34;
+    std::size_t accepted = 0;
+    for (std::size_t i = 0; i < k_positions; ++i) {
+        std::string bytes = intact;
+        bytes[i * (bytes.size() - 1) / (k_positions - 1)] ^= char(0x5a);
+        write_text_file(path, bytes);
+        try {
+            solver::read_hierarchical_state(path);
+            ++accepted;
+        } catch (const InputError&) {
+        }
+    }
+    EXPECT_EQ(accepted, 0u);
+    write_text_file(path, intact);
+    const auto read = solver::read_hierarchical_state(path);
+    EXPECT_EQ(read->mesh_hash, first.solver_state->mesh_hash);
+    EXPECT_EQ(read->radiosity, first.solver_state->radiosity);
+    EXPECT_EQ(read->hierarchy.area, first.solver_state->hierarchy.area);
+    EXPECT_EQ(read->links.size(), first.solver_state->links.size());
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 // Binary file of a hierarchical solve's state (see state/solver_state.h): a magic word and version,
-// then the fields in order, each vector as its element count and raw elements.
+// then the fields in order, each vector as its element count and raw elements, then a 64-bit
+// checksum of all the bytes before it.
 
 #include "state/solver_state.h"
 
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <span>
 #include <sstream>
+#include <string_view>
 
 #include "core/error.h"
 #include "core/files.h"
@@ -21,7 +23,20 @@ namespace {
 // Version 4: cluster links index the face-cluster tree, and their kernels are calibrated.
 // Version 5: element links are 16 bytes (the occlusion flag is the spread's sign bit).
 // Version 8: cluster links are 32 bytes (their visible fraction in 16 bits).
-constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '8'};
+// Version 9: a checksum follows the fields, so that a corrupted file is refused, not solved.
+constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '9'};
+
+/// Chained mix64 of the bytes' 64-bit words and their count. Each step is a bijection of the
+/// running hash, so a change confined to one word always changes the result.
+std::uint64_t checksum(std::string_view bytes) {
+    std::uint64_t h = hash_words({bytes.size()});
+    for (std::size_t at = 0; at < bytes.size(); at += sizeof(std::uint64_t)) {
+        std::uint64_t word = 0;
+        std::memcpy(&word, bytes.data() + at, std::min(sizeof(word), bytes.size() - at));
+        h = mix64(h ^ mix64(word + 0x632be59bd9b4e019ULL));
+    }
+    return h;
+}
 
 class Writer {
 public:
@@ -41,6 +56,12 @@ public:
 private:
     std::ostream& out_;
 };
+
+[[noreturn]] void fail_not_a_state(const std::string& path, const std::string& what) {
+    throw InputError(path, "",
+                     "not a Penumbra solver state (" + what +
+                         "): bake again with the hierarchical method");
+}
 
 class Reader {
 public:
@@ -74,16 +95,32 @@ public:
             fail("truncated or corrupt");
         return std::size_t(n);
     }
-    [[noreturn]] void fail(const std::string& what) const {
-        throw InputError(path_, "",
-                         "not a Penumbra solver state (" + what +
-                             "): bake again with the hierarchical method");
-    }
+    [[noreturn]] void fail(const std::string& what) const { fail_not_a_state(path_, what); }
 
 private:
     std::string bytes_, path_;
     std::size_t at_ = 0;
 };
+
+/// Refuses another version's file, a file that is not a state, and one whose checksum does not
+/// match its bytes (a corruption the size checks of Reader would not see).
+void check_magic_and_checksum(const std::string& bytes, const std::string& path) {
+    if (bytes.size() < sizeof(k_magic))
+        fail_not_a_state(path, "truncated or corrupt");
+    if (std::memcmp(bytes.data(), k_magic, sizeof(k_magic) - 1) == 0 &&
+        bytes[sizeof(k_magic) - 1] != k_magic[sizeof(k_magic) - 1])
+        fail_not_a_state(path,
+                         "written by another version of penumbra: bake again without --reuse");
+    if (std::memcmp(bytes.data(), k_magic, sizeof(k_magic)) != 0)
+        fail_not_a_state(path, "bad magic word");
+    if (bytes.size() < sizeof(k_magic) + sizeof(std::uint64_t))
+        fail_not_a_state(path, "truncated or corrupt");
+    const std::string_view payload(bytes.data(), bytes.size() - sizeof(std::uint64_t));
+    std::uint64_t stored = 0;
+    std::memcpy(&stored, bytes.data() + payload.size(), sizeof(stored));
+    if (stored != checksum(payload))
+        throw InputError(path, "", "is corrupt (checksum mismatch): bake without --reuse");
+}
 
 } // namespace
 
@@ -104,8 +141,8 @@ std::uint64_t mesh_geometry_hash(const RadiosityMesh& mesh) {
 }
 
 void write_hierarchical_state(const HierarchicalState& s, const std::string& path) {
-    write_atomically(path, [&](const std::string& temp) {
-        std::ofstream out(temp, std::ios::binary);
+    std::ostringstream out(std::ios::binary);
+    {
         Writer w(out);
         out.write(k_magic, sizeof(k_magic));
         w.pod(s.mesh_hash);
@@ -130,10 +167,11 @@ void write_hierarchical_state(const HierarchicalState& s, const std::string& pat
         w.vec(s.weights.raw_receive);
         w.vec(s.weights.raw_emit);
         w.vec(s.weights.signature);
-        out.flush();
-        if (!out)
-            throw ExternalError("cannot write " + path);
-    });
+    }
+    std::string bytes = std::move(out).str();
+    const std::uint64_t sum = checksum(bytes);
+    bytes.append(reinterpret_cast<const char*>(&sum), sizeof(sum));
+    write_text_file(path, bytes); // binary-safe, and atomic
 }
 
 std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::string& path) {
@@ -144,14 +182,12 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
                          "method first; it writes solver_state.bin)");
     std::ostringstream buffer;
     buffer << in.rdbuf();
-    Reader r(buffer.str(), path);
+    std::string bytes = std::move(buffer).str();
+    check_magic_and_checksum(bytes, path);
+    bytes.resize(bytes.size() - sizeof(std::uint64_t));
+    Reader r(std::move(bytes), path);
     char magic[sizeof(k_magic)];
     r.take(magic, sizeof(magic));
-    if (std::memcmp(magic, k_magic, sizeof(k_magic) - 1) == 0 &&
-        magic[sizeof(k_magic) - 1] != k_magic[sizeof(k_magic) - 1])
-        r.fail("written by another version of penumbra: bake again without --reuse");
-    if (std::memcmp(magic, k_magic, sizeof(k_magic)) != 0)
-        r.fail("bad magic word");
     auto s = std::make_shared<HierarchicalState>();
     s->mesh_hash = r.pod<std::uint64_t>();
     s->clustered = r.pod<std::uint8_t>() != 0;

@@ -143,6 +143,26 @@ double size_within_budget(const std::vector<Surface>& surfaces, const MeshParams
     return fits;
 }
 
+// A point light on a surface (within the contact tolerance of it) loses the light it sends
+// into that surface's plane, and half of it or all to the surface itself, without a word
+// (a relative imbalance of 0.93 was measured): it is an input error naming the light.
+void check_point_lights_off_surfaces(const Scene& scene, const std::vector<Surface>& surfaces,
+                                     const MeshParams& params) {
+    for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
+        const PointLight& light = scene.point_lights[i];
+        for (const Surface& s : surfaces) {
+            if (std::abs(s.distance(light.position)) > params.contact_tol ||
+                !s.contains(light.position))
+                continue;
+            throw InputError(
+                scene.file, fmt::format("point_lights[{}].position", i),
+                fmt::format("point light '{}' lies on surface {} (within mesher.contact_tolerance, "
+                            "{:.3g} m): move it off the surface",
+                            light.name, s.name, params.contact_tol));
+        }
+    }
+}
+
 // Refines every surface; grows the size bound while the element budget is exceeded. The
 // triangulators are freed by the attempt that is certainly the last.
 std::vector<SurfaceTriangulation> refine_within_budget(const std::vector<Surface>& surfaces,
@@ -224,6 +244,7 @@ RadiosityMesh build_mesh(const Scene& scene, const Context& ctx) {
     StageTimer timer(ctx);
     const MeshParams params = resolve_params(scene);
     const std::vector<Surface> surfaces = build_surfaces(scene, params, ctx);
+    check_point_lights_off_surfaces(scene, surfaces, params);
     double max_edge = size_within_budget(surfaces, params, scene.file, ctx);
     timer.lap("surfaces");
     const SurfaceBvh bvh(surfaces);

@@ -278,6 +278,23 @@ TEST(CliBudget, ElementSizeFarBelowTheBudgetIsRefusedBeforeMeshing) {
     }
 }
 
+// A point light on a surface lost its power without a word (issue #32: relative imbalance
+// 0.93): within the contact tolerance of a surface it is an error naming the light.
+TEST_F(CliBadInput, PointLightOnASurface) {
+    for (const char* z : {"0", "0.0005"}) {
+        write(dir_ / "on.json", good_scene(fmt::format(R"(,
+  "point_lights": [{{"name": "bulb", "position": [0.5, 0.5, {}], "intensity_cd": 10}}])",
+                                                       z)));
+        expect_error((dir_ / "on.json").string(),
+                     {"on.json", "point_lights[0].position", "'bulb'", "floor"});
+    }
+    write(dir_ / "above.json", good_scene(R"(,
+  "point_lights": [{"name": "bulb", "position": [0.5, 0.5, 0.01], "intensity_cd": 10}])"));
+    const RunResult r = run_cli("bake " + (dir_ / "above.json").string() + " -o " +
+                                (dir_ / "out").string() + " --no-render -q");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 TEST_F(CliBadInput, ReuseOfAMissingOrWrongState) {
     write(dir_ / "ok.json", good_scene());
     const fs::path out = dir_ / "out";

@@ -5,10 +5,15 @@
 
 #include "core/scene_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <numeric>
+#include <optional>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -217,6 +222,26 @@ std::string outside_world(const Vec3& p) {
                        format_vec(p));
 }
 
+// The first pair (i, j), i < j, of equal vertices that are not neighbours around the outline.
+// A face of one triangle's indices repeated 10 000 times took a minute and gigabytes to mesh;
+// neighbours that repeat are merged by the mesher.
+std::optional<std::pair<std::size_t, std::size_t>> repeated_vertex(const std::vector<Vec3>& v) {
+    std::vector<std::size_t> order(v.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    const auto key = [&](std::size_t i) { return std::tie(v[i].x, v[i].y, v[i].z); };
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+    std::optional<std::pair<std::size_t, std::size_t>> first;
+    for (std::size_t k = 1; k < order.size(); ++k) {
+        const std::size_t i = std::min(order[k - 1], order[k]),
+                          j = std::max(order[k - 1], order[k]);
+        const bool neighbours = j == i + 1 || (i == 0 && j + 1 == v.size());
+        if (key(i) == key(j) && !neighbours && (!first || std::pair(i, j) < *first))
+            first = std::pair(i, j);
+    }
+    return first;
+}
+
 void validate_polygon(const Scene& scene, const Polygon& polygon) {
     const std::size_t count = polygon.vertices.size();
     if (count < 3)
@@ -235,6 +260,10 @@ void validate_polygon(const Scene& scene, const Polygon& polygon) {
     const double size = box.diagonal();
     if (!(length(newell_normal(polygon.vertices)) > 1e-12 * size * size))
         fail_polygon(scene, polygon, "zero-area face (collinear or repeated vertices)");
+    if (const auto repeat = repeated_vertex(polygon.vertices))
+        fail_polygon(scene, polygon,
+                     fmt::format("vertex {} repeats vertex {}: a face visits each point once",
+                                 repeat->second + 1, repeat->first + 1));
 }
 
 /// The largest radiance (W/(sr·m²)), intensity (W/sr) or irradiance (W/m²) a source may have:

@@ -81,6 +81,28 @@ Hierarchy reused_hierarchy(const RadiosityMesh& mesh, const HierarchicalState& s
     return h;
 }
 
+/// A minimum area that lets the hierarchy grow past this many times the element budget in
+/// leaves is refused: solver.min_area 1e-30 refined without bound.
+constexpr double k_leaf_budget_factor = 100.0;
+
+// Leaves are at least a quarter of min_area (a node is split while above it, in four).
+void check_min_area(const Scene& scene, const RadiosityMesh& mesh, double min_area) {
+    const std::int64_t budget = scene.mesher.element_budget;
+    if (budget <= 0)
+        return;
+    double area = 0;
+    for (const double a : mesh.element_area)
+        area += a;
+    const double most_leaves = 4.0 * area / min_area;
+    if (most_leaves <= k_leaf_budget_factor * double(budget))
+        return;
+    throw ConfigError(fmt::format(
+        "solver.min_area {:.3g} m² lets the hierarchy grow to about {:.3g} leaves, over {:g} "
+        "times mesher.element_budget ({}): use --min-area {:.2g} or more",
+        min_area, most_leaves, k_leaf_budget_factor, budget,
+        4.0 * area / (k_leaf_budget_factor * double(budget))));
+}
+
 RefineSettings refine_settings(const Scene& scene, const RadiosityMesh& mesh, const Context& ctx) {
     RefineSettings rs;
     rs.oracle = scene.solver.oracle;
@@ -90,6 +112,7 @@ RefineSettings refine_settings(const Scene& scene, const RadiosityMesh& mesh, co
     rs.offset = 1e-5 * std::max(mesh.scene_diagonal, 1e-3);
     rs.min_area = scene.solver.min_area > 0 ? scene.solver.min_area
                                             : std::pow(mesh.scene_diagonal / 200.0, 2);
+    check_min_area(scene, mesh, rs.min_area);
     return rs;
 }
 

@@ -295,6 +295,19 @@ TEST_F(CliBadInput, PointLightOnASurface) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
+// A minimum area that lets the hierarchy grow without bound is refused before refining (issue
+// #32: solver.min_area 1e-30 refined on and on).
+TEST(CliBudget, MinimumAreaFarBelowTheBudgetIsRefused) {
+    const std::string scene = test::source_path("data/cornell/scene.json");
+    const fs::path out = fs::path(test::temp_dir("cli-min-area")) / "out";
+    const RunResult r = run_cli("bake " + scene + " -o " + out.string() + " --min-area 1e-30 -q");
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    for (const char* part : {"solver.min_area", "mesher.element_budget", "--min-area"})
+        EXPECT_NE(r.err.find(part), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out / "mesh.vtu"));
+}
+
 TEST_F(CliBadInput, ReuseOfAMissingOrWrongState) {
     write(dir_ / "ok.json", good_scene());
     const fs::path out = dir_ / "out";

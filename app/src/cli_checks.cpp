@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "core/error.h"
+
 namespace penumbra::app {
 
 namespace {
@@ -24,10 +26,6 @@ std::optional<double> finite_number(const std::string& text) {
 /// At most this many characters of what the user typed are echoed in a message.
 constexpr std::size_t k_echo_chars = 40;
 
-std::string echoed(const std::string& text) {
-    return text.size() <= k_echo_chars ? text : text.substr(0, k_echo_chars) + "…";
-}
-
 } // namespace
 
 CLI::Validator positive_number() {
@@ -36,7 +34,8 @@ CLI::Validator positive_number() {
             const std::optional<double> v = finite_number(text);
             if (v && *v > 0)
                 return {};
-            return fmt::format("expected a finite number > 0, got '{}'", echoed(text));
+            return fmt::format("expected a finite number > 0, got '{}'",
+                               excerpt(text, k_echo_chars));
         },
         "NUMBER > 0");
 }
@@ -47,7 +46,8 @@ CLI::Validator number_in(double lo, double hi) {
             const std::optional<double> v = finite_number(text);
             if (v && *v >= lo && *v <= hi)
                 return {};
-            return fmt::format("expected a number in [{:g}, {:g}], got '{}'", lo, hi, echoed(text));
+            return fmt::format("expected a number in [{:g}, {:g}], got '{}'", lo, hi,
+                               excerpt(text, k_echo_chars));
         },
         fmt::format("NUMBER in [{:g}, {:g}]", lo, hi));
 }

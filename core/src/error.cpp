@@ -20,4 +20,8 @@ InputError::InputError(const std::string& file, const std::string& key, const st
     : std::runtime_error(format_input_error(file, key, what, line)), file_(file), key_(key),
       line_(line) {}
 
+std::string excerpt(const std::string& text, std::size_t max_chars) {
+    return text.size() <= max_chars ? text : text.substr(0, max_chars) + "…";
+}
+
 } // namespace penumbra

@@ -123,10 +123,6 @@ void add_inline_polygons(Scene& scene, const std::vector<PolygonSpec>& specs) {
 /// At most this many characters of a bad input line are quoted in a message.
 constexpr std::size_t k_quoted_chars = 80;
 
-std::string echoed_line(const std::string& line) {
-    return line.size() <= k_quoted_chars ? line : line.substr(0, k_quoted_chars) + "…";
-}
-
 /// One Radiance-style sensor line "x y z nx ny nz"; false if it does not hold 6 numbers.
 bool parse_sensor_line(const std::string& line, double metres_per_unit, Sensor& sensor) {
     std::istringstream tokens(line);
@@ -158,10 +154,10 @@ std::vector<Sensor> read_sensor_file(const std::string& path, double metres_per_
             continue;
         Sensor sensor;
         if (!parse_sensor_line(line, metres_per_unit, sensor))
-            throw InputError(
-                path, "",
-                fmt::format("expected 6 numbers 'x y z nx ny nz', got '{}'", echoed_line(line)),
-                number);
+            throw InputError(path, "",
+                             fmt::format("expected 6 numbers 'x y z nx ny nz', got '{}'",
+                                         excerpt(line, k_quoted_chars)),
+                             number);
         if (length(sensor.normal) == 0)
             throw InputError(path, "", "the sensor normal is zero", number);
         sensor.normal = normalize(sensor.normal);

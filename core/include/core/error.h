@@ -3,10 +3,15 @@
 // link), caught once in the CLI's main. Messages are one line: what failed, where, and what
 // to try.
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
 namespace penumbra {
+
+/// \brief \p text as a message quotes it: whole up to \p max_chars, else its first
+///        \p max_chars and "…" (a bad line of a 10 MB file stays one readable line).
+std::string excerpt(const std::string& text, std::size_t max_chars);
 
 /// Scene or asset problems; carries the file, line (0 if unknown) and key.
 class InputError : public std::runtime_error {

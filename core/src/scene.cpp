@@ -18,6 +18,8 @@ bool Scene::has_emitter() const {
             return true;
     if (sun && !sun->irradiance.is_black())
         return true;
+    if (sky && (sky->zenith_radiance > 0 || sky->ground_radiance.value_or(0) > 0))
+        return true;
     for (const Polygon& poly : polygons)
         if (!materials[poly.material].emission.is_black())
             return true;

@@ -82,8 +82,8 @@ struct SunSource {
     auto operator<=>(const SunSource&) const = default;
 };
 
-/// \brief The sky, a source at infinity over the whole upper hemisphere. Not yet emitted by
-///        any scene: the daylight issues add it.
+/// \brief The sky and its ground, Scene::sky: a source at infinity over the whole sphere of
+///        directions (core/sky.h).
 struct SkySource {
     auto operator<=>(const SkySource&) const = default;
 };

@@ -12,6 +12,7 @@
 #include "core/light.h"
 #include "core/material.h"
 #include "core/rgb.h"
+#include "core/sky.h"
 #include "core/vec.h"
 
 namespace penumbra {
@@ -143,13 +144,14 @@ struct Scene {
     std::vector<Polygon> polygons;
     std::vector<PointLight> point_lights;
     std::optional<Sun> sun;
+    std::optional<Sky> sky; ///< sky and ground at infinity (issue #30)
     std::vector<Sensor> sensors;
     std::optional<Camera> camera;
     MesherSettings mesher;
     SolverSettings solver;
 
     BBox bounds() const;
-    /// Some polygon emits, or a point light or the sun has a non-zero intensity.
+    /// Some polygon emits, or a point light, the sun or the sky has a non-zero intensity.
     bool has_emitter() const;
 };
 

@@ -16,18 +16,22 @@ nlohmann::json rgb_json(const RgbD& c) {
     return {{"rgb_w", {c.r, c.g, c.b}}, {"lm", to_photometric(c)}};
 }
 
-nlohmann::json balance_json(const solver::PowerBalance& pb, bool sun) {
+nlohmann::json balance_json(const solver::PowerBalance& pb, bool distant_sources) {
     nlohmann::json j;
     j["emitted"] = rgb_json(pb.emitted);
     j["absorbed"] = rgb_json(pb.absorbed);
     j["escaped"] = rgb_json(pb.escaped);
+    j["glazing"] = rgb_json(pb.glazing);
     j["residual_unshot"] = rgb_json(pb.residual);
     j["relative_imbalance"] = pb.relative_imbalance();
-    std::string note = "emitted = absorbed + escaped + residual_unshot + imbalance; escaped is "
-                       "estimated by its own rays, imbalance is discretisation and sampling error";
-    if (sun)
-        note += "; the sun's share of emitted is the power its direct light delivers to the "
-                "scene's surfaces (sum of E_direct,sun * A), none of which escapes";
+    std::string note =
+        "emitted = absorbed + escaped + glazing + residual_unshot + imbalance; escaped (through "
+        "openings, and through glazing its transmittance) is estimated by its own rays; glazing "
+        "is what panes absorb and reflect of the light reaching them from inside; imbalance is "
+        "discretisation and sampling error";
+    if (distant_sources)
+        note += "; the share of emitted of the sun and the sky is the power their direct light "
+                "delivers to the scene's surfaces (sum of E_direct * A), none of which escapes";
     j["note"] = note;
     return j;
 }
@@ -57,7 +61,8 @@ std::string summary_json(const Scene& scene, const BakeResult& result) {
     }
     times["total"] = total;
     j["seconds"] = times;
-    j["power_balance"] = balance_json(result.stats.power, scene.sun.has_value());
+    j["power_balance"] =
+        balance_json(result.stats.power, scene.sun.has_value() || scene.sky.has_value());
     return j.dump(2) + "\n";
 }
 

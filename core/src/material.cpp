@@ -70,6 +70,13 @@ Rgb ThinGlass::hemispherical_transmittance() const {
                        [&](double tn) { return thin_glass_hemispherical_transmittance(tn, ior); });
 }
 
+std::optional<ThinGlass> glazing_of(const Material& m) {
+    if (m.lobe)
+        if (const auto* glass = std::get_if<ThinGlass>(&*m.lobe))
+            return *glass;
+    return std::nullopt;
+}
+
 RadiosityResponse radiosity_response(const Material& m) {
     RadiosityResponse r;
     r.reflectance = m.reflectance;

@@ -89,6 +89,8 @@ EnclosureTest::EnclosureTest(const Scene& scene, const std::vector<Surface>& sur
     }
     for (const PointLight& light : scene.point_lights)
         sources_.push_back({light.position, std::nullopt});
+    if (scene.sun && !scene.sun->irradiance.is_black())
+        sun_direction_ = scene.sun->direction;
     if (!sources_.empty())
         build_sources(0, std::uint32_t(sources_.size()));
     build_blockers();
@@ -305,6 +307,10 @@ bool EnclosureTest::enclosed(const Vec3& p, const Vec3& n, std::uint32_t s, doub
             !(hidden_at && hidden_at(std::uint32_t(hit.surface), q + dir * hit.t, false)))
             return false;
     }
+    if (sun_direction_ && dot(*sun_direction_, n) > 0 &&
+        bvh_.first_hit(q, *sun_direction_, 0.0, 4.0 * params_.diagonal + 1.0, skip, k_light)
+                .surface < 0)
+        return false; // the sun shines on it (through a window the probes missed)
     return !sees_a_source(q);
 }
 

@@ -25,7 +25,8 @@ public:
     /// \brief Whether the side with unit normal \p n of surface \p s is enclosed at \p p: every
     ///        one of 64 probe rays from just above p meets the back side of some opaque
     ///        surface (or a side that \p hidden_at, if given, reports hidden), and no source
-    ///        (emitting side of an emissive surface, point light) is visible from there.
+    ///        (emitting side of an emissive surface, point light, the sun's centre) is visible
+    ///        from there; a probe that leaves the scene sees the sky.
     ///        Probes and source rays pass through glazing (Surface::opaque false). \p inradius
     ///        bounds the distance from p to the region's boundary.
     bool enclosed(const Vec3& p, const Vec3& n, std::uint32_t s, double inradius,
@@ -57,6 +58,7 @@ private:
     std::vector<Vec3> directions_; ///< unit, around +z
     std::vector<SourcePoint> sources_;
     std::vector<SourceNode> source_nodes_;
+    std::optional<Vec3> sun_direction_; ///< toward the sun, when it shines
     /// A convex region of one plane that occludes sources: an opaque non-emitting surface
     /// with a convex outline, or a connected set of coplanar ones that tiles its convex hull
     /// (the quads of a tessellated rectangle), in the 2D frame of one of them.

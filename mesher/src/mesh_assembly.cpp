@@ -87,7 +87,7 @@ void write_surface(RadiosityMesh& mesh, const Scene& scene, const Surface& s,
     front.normal = s.normal;
     front.reflectance = response.reflectance;
     front.emission = response.emission * float(k_pi);
-    front.opaque = response.opaque();
+    front.glazing = glazing_of(scene.materials[poly.material]);
     Patch back = front;
     back.back = true;
     back.normal = -s.normal;

@@ -1,7 +1,9 @@
-// Embree 3 scene of the radiosity mesh's geometry elements (one triangle geometry, primitive p =
-// geometry_elements[p]). Device and scene live in move-only RAII handles; the device's error
-// callback records the first error and the wrapper throws ExternalError after the failing call
-// returns, as Embree's minimal.cpp tutorial recommends.
+// Embree 3 scenes of the radiosity mesh's geometry elements: the opaque elements (geometry 0) in
+// a scene of their own, which every query but transmittance() traces, and with the panes of
+// glazing (geometry 1) in a second scene for transmittance(), whose occlusion filter multiplies
+// each pane's T(θ) into the ray and lets it go on. Device and scene live in move-only RAII handles;
+// the device's error callback records the first error and the wrapper throws ExternalError after
+// the failing call returns, as Embree's minimal.cpp tutorial recommends.
 
 #include "raytrace/raytrace.h"
 
@@ -194,16 +196,73 @@ private:
     std::array<Slot, k_slots> slots_;
 };
 
+namespace {
+
+/// What a ray met on its way through panes of glazing: the product of their T(θ) and the
+/// surfaces counted, so that a pane reported twice (adjacent triangles at a shared edge, a
+/// primitive split by the high-quality build) counts once.
+constexpr std::size_t k_ray_batch = 256;
+
+struct PaneCrossings {
+    static constexpr int k_most = 8; ///< more distinct panes on one ray multiply uncounted
+    float transmittance = 1.0f;
+    int count = 0;
+    std::array<std::uint32_t, k_most> surfaces{};
+
+    /// \brief Counts surface \p s at \p t, unless it was counted already.
+    void cross(std::uint32_t s, float t) {
+        for (int i = 0; i < count; ++i)
+            if (surfaces[std::size_t(i)] == s)
+                return;
+        if (count < k_most)
+            surfaces[std::size_t(count++)] = s;
+        transmittance *= t;
+    }
+};
+
+/// The context of a transmittance() batch: Embree passes it to the panes' filter.
+struct PaneContext {
+    RTCIntersectContext base; // first, so that Embree's pointer to it is a PaneContext's
+    const RadiosityMesh* mesh = nullptr;
+    const std::vector<std::uint32_t>* panes = nullptr; ///< primitive → element
+    PaneCrossings* crossings = nullptr;                ///< by ray id
+};
+
+/// The panes' occlusion filter: multiply the pane's T(θ) (the mean of its channels) into the
+/// ray and reject the hit, so that traversal goes on to what lies behind.
+void cross_pane(const RTCFilterFunctionNArguments* args) {
+    const auto* context = reinterpret_cast<const PaneContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1)
+            continue;
+        args->valid[i] = 0;
+        const std::uint32_t element = (*context->panes)[RTCHitN_primID(args->hit, args->N, i)];
+        const Patch& patch = context->mesh->patch_of(element);
+        const Vec3 dir(RTCRayN_dir_x(args->ray, args->N, i), RTCRayN_dir_y(args->ray, args->N, i),
+                       RTCRayN_dir_z(args->ray, args->N, i));
+        const double cos_theta = std::abs(dot(normalize(dir), patch.normal));
+        const Rgb t = patch.glazing->transmittance(cos_theta);
+        context->crossings[RTCRayN_id(args->ray, args->N, i)].cross(patch.surface,
+                                                                    (t.r + t.g + t.b) / 3.0f);
+    }
+}
+
+} // namespace
+
 struct EmbreeScene::Impl {
-    // Declaration order is release order reversed: the scene goes before the device, and the
+    // Declaration order is release order reversed: the scenes go before the device, and the
     // error record, which the device's callback points to, outlives both.
     ErrorRecord errors;
     DeviceHandle device;
-    SceneHandle scene;
+    SceneHandle scene;                 ///< the opaque elements
+    SceneHandle glazed_scene;          ///< the opaque elements and the panes; null without panes
+    std::vector<std::uint32_t> opaque; ///< primitive of geometry 0 → element
+    std::vector<std::uint32_t> panes;  ///< primitive of geometry 1 → element
     RayCount rays;
 
     void build(const RadiosityMesh& mesh);
-    void add_triangles(const RadiosityMesh& mesh);
+    SceneHandle new_scene();
+    GeometryHandle triangles(const RadiosityMesh& mesh, const std::vector<std::uint32_t>& elements);
 };
 
 void EmbreeScene::Impl::build(const RadiosityMesh& mesh) {
@@ -214,19 +273,41 @@ void EmbreeScene::Impl::build(const RadiosityMesh& mesh) {
                                         error_name(rtcGetDeviceError(nullptr))));
     rtcSetDeviceErrorFunction(device.get(), &ErrorRecord::callback, &errors);
 
-    scene = SceneHandle(rtcNewScene(device.get()));
-    errors.throw_if_failed("rtcNewScene");
-    rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(scene.get(), RTC_BUILD_QUALITY_HIGH);
-    errors.throw_if_failed("scene set-up");
-
-    if (!mesh.geometry_elements.empty())
-        add_triangles(mesh);
+    for (std::uint32_t e : mesh.geometry_elements)
+        (mesh.patch_of(e).opaque() ? opaque : panes).push_back(e);
+    scene = new_scene();
+    GeometryHandle walls = triangles(mesh, opaque);
+    if (walls.get())
+        rtcAttachGeometryByID(scene.get(), walls.get(), 0); // the scene keeps its own reference
+    if (!panes.empty()) {
+        glazed_scene = new_scene();
+        if (walls.get())
+            rtcAttachGeometryByID(glazed_scene.get(), walls.get(), 0);
+        GeometryHandle glass = triangles(mesh, panes);
+        rtcSetGeometryOccludedFilterFunction(glass.get(), &cross_pane);
+        rtcAttachGeometryByID(glazed_scene.get(), glass.get(), 1);
+        errors.throw_if_failed("rtcAttachGeometryByID");
+        rtcCommitScene(glazed_scene.get());
+    }
+    errors.throw_if_failed("rtcAttachGeometryByID");
     rtcCommitScene(scene.get());
     errors.throw_if_failed("rtcCommitScene");
 }
 
-void EmbreeScene::Impl::add_triangles(const RadiosityMesh& mesh) {
+SceneHandle EmbreeScene::Impl::new_scene() {
+    SceneHandle made(rtcNewScene(device.get()));
+    errors.throw_if_failed("rtcNewScene");
+    rtcSetSceneFlags(made.get(), RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(made.get(), RTC_BUILD_QUALITY_HIGH);
+    errors.throw_if_failed("scene set-up");
+    return made;
+}
+
+// A committed triangle geometry of \p elements (primitive p = elements[p]); none if empty.
+GeometryHandle EmbreeScene::Impl::triangles(const RadiosityMesh& mesh,
+                                            const std::vector<std::uint32_t>& elements) {
+    if (elements.empty())
+        return {};
     GeometryHandle geometry(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE));
     errors.throw_if_failed("rtcNewGeometry");
     rtcSetGeometryBuildQuality(geometry.get(), RTC_BUILD_QUALITY_HIGH);
@@ -238,7 +319,7 @@ void EmbreeScene::Impl::add_triangles(const RadiosityMesh& mesh) {
                                 3 * sizeof(float), mesh.vertex_count()));
     auto* indices = static_cast<std::uint32_t*>(
         rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                3 * sizeof(std::uint32_t), mesh.geometry_elements.size()));
+                                3 * sizeof(std::uint32_t), elements.size()));
     errors.throw_if_failed("rtcSetNewGeometryBuffer");
 
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
@@ -246,13 +327,13 @@ void EmbreeScene::Impl::add_triangles(const RadiosityMesh& mesh) {
         vertices[3 * v + 1] = mesh.positions[v].y;
         vertices[3 * v + 2] = mesh.positions[v].z;
     }
-    for (std::size_t p = 0; p < mesh.geometry_elements.size(); ++p) {
-        const auto& t = mesh.triangles[mesh.geometry_elements[p]];
+    for (std::size_t p = 0; p < elements.size(); ++p) {
+        const auto& t = mesh.triangles[elements[p]];
         std::copy(t.begin(), t.end(), indices + 3 * p);
     }
     rtcCommitGeometry(geometry.get());
-    rtcAttachGeometry(scene.get(), geometry.get()); // the scene keeps its own reference
-    errors.throw_if_failed("rtcAttachGeometry");
+    errors.throw_if_failed("rtcCommitGeometry");
+    return geometry;
 }
 
 EmbreeScene::EmbreeScene(const RadiosityMesh& mesh) : impl_(std::make_unique<Impl>()), mesh_(mesh) {
@@ -268,6 +349,11 @@ namespace {
 RTCRay& ray_of(RTCRay& ray) {
     return ray;
 }
+/// Whether Embree marked the ray occluded (it sets tfar to −∞).
+bool blocked(const RTCRay& ray) {
+    return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
 RTCRay& ray_of(RTCRayHit& rayhit) {
     rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
@@ -278,26 +364,27 @@ RTCRay& ray_of(RTCRayHit& rayhit) {
 
 // Traces \p segments in batches of up to 256 Rays (RTCRay or RTCRayHit) through
 // trace(context, rays, count), Embree's \p call, then read(index of the segment, its ray).
-template <typename Ray, typename Trace, typename Read>
+// \p prepare(context, first segment of the batch) readies the batch's context.
+template <typename Ray, typename Trace, typename Read, typename Prepare>
 void EmbreeScene::trace_batches(const char* what, const char* call,
                                 std::span<const Segment> segments, std::size_t results,
-                                Trace&& trace, Read&& read) const {
+                                RTCIntersectContext* context, Trace&& trace, Read&& read,
+                                Prepare&& prepare) const {
     if (segments.size() != results)
         throw InternalError(fmt::format("EmbreeScene::{}: {} segments but {} results", what,
                                         segments.size(), results));
-    constexpr std::size_t k_batch = 256;
-    std::array<Ray, k_batch> rays;
-    RTCIntersectContext context;
-    for (std::size_t begin = 0; begin < segments.size(); begin += k_batch) {
-        const std::size_t count = std::min(k_batch, segments.size() - begin);
+    std::array<Ray, k_ray_batch> rays;
+    for (std::size_t begin = 0; begin < segments.size(); begin += k_ray_batch) {
+        const std::size_t count = std::min(k_ray_batch, segments.size() - begin);
         for (std::size_t i = 0; i < count; ++i) {
             const Segment& s = segments[begin + i];
             RTCRay& ray = ray_of(rays[i]);
             ray = make_ray(s.origin, s.direction, s.tnear, s.tfar);
             ray.id = unsigned(i);
         }
-        rtcInitIntersectContext(&context);
-        trace(&context, rays.data(), unsigned(count));
+        rtcInitIntersectContext(context);
+        prepare(begin);
+        trace(context, rays.data(), unsigned(count));
         for (std::size_t i = 0; i < count; ++i)
             read(begin + i, rays[i]);
     }
@@ -306,28 +393,54 @@ void EmbreeScene::trace_batches(const char* what, const char* call,
 }
 
 void EmbreeScene::occluded(std::span<const Segment> segments, std::span<std::uint8_t> out) const {
+    RTCIntersectContext context;
     trace_batches<RTCRay>(
-        "occluded", "rtcOccluded1M", segments, out.size(),
+        "occluded", "rtcOccluded1M", segments, out.size(), &context,
         [&](RTCIntersectContext* context, RTCRay* rays, unsigned count) {
             rtcOccluded1M(impl_->scene.get(), context, rays, count, sizeof(RTCRay));
         },
-        // Embree marks an occluded ray by setting tfar to -inf.
+        [&](std::size_t k, const RTCRay& ray) { out[k] = blocked(ray) ? 1 : 0; },
+        [](std::size_t) {});
+}
+
+void EmbreeScene::transmittance(std::span<const Segment> segments, std::span<float> out) const {
+    if (!impl_->glazed_scene.get()) {
+        VisibilityQuery::transmittance(segments, out);
+        return;
+    }
+    std::array<PaneCrossings, k_ray_batch> crossings;
+    PaneContext context;
+    context.mesh = &mesh_;
+    context.panes = &impl_->panes;
+    context.crossings = crossings.data();
+    std::size_t first = 0;
+    trace_batches<RTCRay>(
+        "transmittance", "rtcOccluded1M", segments, out.size(), &context.base,
+        [&](RTCIntersectContext* c, RTCRay* rays, unsigned count) {
+            rtcOccluded1M(impl_->glazed_scene.get(), c, rays, count, sizeof(RTCRay));
+        },
         [&](std::size_t k, const RTCRay& ray) {
-            out[k] = ray.tfar == -std::numeric_limits<float>::infinity() ? 1 : 0;
+            out[k] = blocked(ray) ? 0.0f : crossings[k - first].transmittance;
+        },
+        [&](std::size_t begin) {
+            first = begin;
+            crossings.fill(PaneCrossings{});
         });
 }
 
 void EmbreeScene::first_hit(std::span<const Segment> segments, std::span<std::int32_t> hit) const {
+    RTCIntersectContext context;
     trace_batches<RTCRayHit>(
-        "first_hit", "rtcIntersect1M", segments, hit.size(),
+        "first_hit", "rtcIntersect1M", segments, hit.size(), &context,
         [&](RTCIntersectContext* context, RTCRayHit* rays, unsigned count) {
             rtcIntersect1M(impl_->scene.get(), context, rays, count, sizeof(RTCRayHit));
         },
         [&](std::size_t k, const RTCRayHit& ray) {
             hit[k] = ray.hit.geomID == RTC_INVALID_GEOMETRY_ID
                          ? -1
-                         : std::int32_t(mesh_.geometry_elements[ray.hit.primID]);
-        });
+                         : std::int32_t(impl_->opaque[ray.hit.primID]);
+        },
+        [](std::size_t) {});
 }
 
 std::uint64_t EmbreeScene::rays_traced() const {
@@ -349,7 +462,7 @@ EmbreeScene::Hit EmbreeScene::intersect(const Vec3f& origin, const Vec3f& direct
     if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
         return hit;
     hit.t = rayhit.ray.tfar;
-    const std::uint32_t front = mesh_.geometry_elements[rayhit.hit.primID];
+    const std::uint32_t front = impl_->opaque[rayhit.hit.primID];
     if (dot(Vec3(direction), mesh_.patch_of(front).normal) < 0) {
         hit.element = std::int32_t(front);
         hit.u = rayhit.hit.u;

@@ -291,7 +291,7 @@ SolveResult output_stage(HierarchicalSystem& sys, const Scene& scene, const Radi
         stats->power = hierarchical_balance(
             scene, out_mesh, geo, result.solution, visibility, sys.settings.rows,
             stats->residual_history.empty() ? 0.0 : stats->residual_history.back(),
-            sys.sun_power());
+            sys.distant_power());
         ctx.debug("hierarchical: power balance {:.2f} s", seconds_since(t0));
     }
     // The last pass is the solution itself where it lives on the roots.

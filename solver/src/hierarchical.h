@@ -10,12 +10,12 @@
 namespace penumbra::solver {
 
 /// \brief Power balance of a gathered solution: escape estimated per element by its own rays.
-///        \p sun_delivered is what the sun's direct light brought to the surfaces (Σ E A over
-///        its links), counted as emitted; none of it escapes.
+///        \p distant_delivered is what the sun's and the sky's direct light brought to the
+///        surfaces (Σ E A over their links), counted as emitted; none of it escapes.
 PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
                                   const ElementGeometry& geo, const Solution& solution,
                                   const VisibilityQuery& visibility, const RowSettings& rows,
-                                  double unconverged_fraction, const RgbD& sun_delivered);
+                                  double unconverged_fraction, const RgbD& distant_delivered);
 
 /// \brief Hierarchical radiosity on the mesh's elements as roots; returns the leaf mesh and
 ///        its solution.

@@ -76,7 +76,7 @@ Hierarchy reused_hierarchy(const RadiosityMesh& mesh, const HierarchicalState& s
         const Patch& p = mesh.patches[h.patch[n]];
         h.emission[n] = p.emission;
         h.reflectance[n] = p.reflectance;
-        h.opaque[n] = p.opaque ? 1 : 0;
+        h.opaque[n] = p.opaque() ? 1 : 0;
     }
     return h;
 }
@@ -151,7 +151,7 @@ void link_system(HierarchicalSystem& sys, LinkSet& refiner, const Scene& scene, 
         refiner.link_roots();
     }
     refiner.set_threshold(scene.solver.epsilon * radiosity_scale(h, sys.links));
-    sys.emitted += sys.sun_power().max_component(); // what the sun's direct light delivers
+    sys.emitted += sys.distant_power().max_component(); // what the sun and sky deliver
     if (clusters.enabled)
         refiner.set_cluster_threshold(scene.solver.epsilon * sys.emitted / clusters.tree.area[0]);
 }
@@ -262,7 +262,7 @@ HierarchicalSystem::HierarchicalSystem(const Scene& scene, const RadiosityMesh& 
                                        const Context& ctx, const HierarchicalState* reuse)
     : h(reuse ? reused_hierarchy(mesh, *reuse) : Hierarchy(mesh)),
       twin(reuse ? reuse->twin : mesh.element_twin), settings(refine_settings(scene, mesh, ctx)) {
-    emitted = emitted_power_max(h, scene.point_lights); // and the sun's, once linked
+    emitted = emitted_power_max(h, scene.point_lights); // and the sun's and sky's, once linked
     values.b = reuse ? reuse->radiosity : h.emission;
     values.b_range.assign(h.size(), 0.0f);
 }
@@ -275,7 +275,8 @@ build_hierarchical(const Scene& scene, const RadiosityMesh& mesh, const Visibili
     make_clusters(*sys, scene, ctx, reuse);
     // Lives as long as refinement: the system keeps the links and the cluster tables.
     LinkSet refiner(sys->h, sys->twin, sys->links, sys->clusters.tables.get(), visibility,
-                    scene.point_lights, scene.sun ? &*scene.sun : nullptr, sys->settings);
+                    scene.point_lights, scene.sun ? &*scene.sun : nullptr,
+                    scene.sky ? &*scene.sky : nullptr, sys->settings);
     link_system(*sys, refiner, scene, ctx, reuse);
     sys->iteration = scene.solver.iteration;
     if (reuse)

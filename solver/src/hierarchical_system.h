@@ -46,8 +46,8 @@ struct HierarchicalSystem {
     /// relative to.
     double emitted = 0;
 
-    /// What the sun's links deliver (W per channel): the sun's power in the balance.
-    RgbD sun_power() const { return links.sun_power(h); }
+    /// What the sun's and the sky's links deliver (W per channel): their power in the balance.
+    RgbD distant_power() const { return links.distant_power(h); }
 };
 
 /// \brief Throws ConfigError unless \p state was saved by a solve of \p mesh's geometry.

@@ -41,7 +41,7 @@ SolveResult solve_fixed(const Scene& scene, const RadiosityMesh& mesh,
 PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
                                   const ElementGeometry& geo, const Solution& solution,
                                   const VisibilityQuery& visibility, const RowSettings& rows,
-                                  double unconverged_fraction, const RgbD& sun_delivered) {
+                                  double unconverged_fraction, const RgbD& distant_delivered) {
     PowerBalance pb;
     // Many leaves: their sum averages the noise out. 16 rays each up to 2^18 leaves, then
     // about as many rays in all (down to 4 each; docs/calibration.md#k_escape_budget). A
@@ -59,9 +59,8 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
         const Patch& p = mesh.patch_of(std::uint32_t(e));
         pb.emitted += RgbD(p.emission) * geo.area[e];
         pb.escaped += RgbD(solution.radiosity[e]) * (geo.area[e] * escape[e]);
-        RgbD h = RgbD(solution.irradiance_direct[e]) + RgbD(solution.irradiance_indirect[e]);
-        RgbD a = RgbD(1, 1, 1) - RgbD(p.reflectance);
-        pb.absorbed += RgbD(h.r * a.r, h.g * a.g, h.b * a.b) * geo.area[e];
+        pb.receive(p, RgbD(solution.irradiance_direct[e]) + RgbD(solution.irradiance_indirect[e]),
+                   geo.area[e]);
     }
     for (std::uint32_t l = 0; l < scene.point_lights.size(); ++l) {
         const PointLight& light = scene.point_lights[l];
@@ -70,7 +69,7 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
         pb.escaped +=
             power * light_escape_fraction(geo, visibility, light, PointSource{l}, rows.seed);
     }
-    pb.emitted += sun_delivered; // the sun's power is what its direct light delivers
+    pb.emitted += distant_delivered; // the power of the sun and sky is what they deliver
     pb.residual = pb.emitted * unconverged_fraction;
     return pb;
 }

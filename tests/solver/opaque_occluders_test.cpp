@@ -30,7 +30,8 @@ RadiosityMesh wall_with_pane(bool wall_opaque, bool pane_opaque) {
         Patch patch;
         patch.polygon = patch.surface = patch.material = std::uint32_t(square);
         patch.normal = Vec3(1, 0, 0);
-        patch.opaque = square == 0 ? wall_opaque : pane_opaque;
+        const bool opaque = square == 0 ? wall_opaque : pane_opaque;
+        patch.glazing = opaque ? std::nullopt : std::optional<ThinGlass>(ThinGlass{});
         mesh.patches.push_back(patch);
         for (int k = 0; k < 2; ++k) {
             mesh.element_patch.push_back(std::uint32_t(square));

@@ -115,6 +115,9 @@ struct RadiosityResponse {
     bool opaque() const { return transmittance.is_black(); }
 };
 
+/// \brief The thin glass of \p m, if it is glazing.
+std::optional<ThinGlass> glazing_of(const Material& m);
+
 /// \brief The radiosity response of \p m: the one function through which the mesher and the
 ///        solver read a material.
 RadiosityResponse radiosity_response(const Material& m);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/light.h"
+#include "core/material.h"
 #include "core/rgb.h"
 #include "core/vec.h"
 
@@ -24,9 +25,13 @@ struct Patch {
     Vec3 normal;                ///< unit normal of this side
     Rgb reflectance;            ///< the material's diffuse reflectance (radiosity_response)
     Rgb emission;               ///< emitted radiosity πL of this side, W/m²
-    /// Blocks all light (RadiosityResponse::opaque): every surface but glazing. Occluder
-    /// certificates and the mesher's hidden regions count only opaque surfaces.
-    bool opaque = true;
+    /// The pane's optics when the surface is glazing (a ThinGlass material), which rays cross
+    /// with its transmittance T(θ); none for every other surface.
+    std::optional<ThinGlass> glazing;
+
+    /// Blocks all light: every surface but glazing. Occluder certificates, the mesher's hidden
+    /// regions and visibility count only opaque surfaces.
+    bool opaque() const { return !glazing; }
 };
 
 /// \brief A discontinuity in the illumination (a shadow boundary) that the mesher inserted

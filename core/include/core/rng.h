@@ -20,6 +20,7 @@ enum class RngPurpose : std::uint64_t {
     cluster_visibility = 8,
     sun_visibility = 9,
     exact_visibility = 10,
+    sky_visibility = 11,
 };
 
 /// SplitMix64 finaliser: a strong 64-bit mix.

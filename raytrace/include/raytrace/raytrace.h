@@ -12,6 +12,8 @@
 #include "core/scene.h"
 #include "core/visibility.h"
 
+struct RTCIntersectContext; // Embree's, kept out of this header
+
 namespace penumbra::raytrace {
 
 /// \brief Embree device + scene (RTC_SCENE_FLAG_ROBUST) over the geometry elements of a mesh.
@@ -23,15 +25,15 @@ public:
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-    /// Every element blocks here, whatever its Patch::opaque (no scene has glazing yet), so
-    /// transmittance() is the default, 1 − occluded(). Panes will be a geometry of their own
-    /// whose occlusion filter function (rtcSetGeometryOccludedFilterFunction) multiplies the
-    /// pane's T(θ) into the ray's transmittance and rejects the hit, so that traversal goes on
-    /// to the opaque surface that ends it, if any; a pane reported twice (the high-quality
-    /// build may split a primitive) counts once (issue #30).
+    /// Opaque elements block every query; panes of glazing (Patch::glazing) only
+    /// transmittance(), which multiplies each pane's T(θ) (the mean of its channels) once per
+    /// pane surface crossed. occluded(), first_hit() and intersect() see through panes (the
+    /// camera sees the room behind a window; light between two surfaces through a pane passes
+    /// unattenuated until the solver's links carry transmittance, issue #30).
     void occluded(std::span<const Segment> segments, std::span<std::uint8_t> out) const override;
     /// Names the front element of a two-sided surface.
     void first_hit(std::span<const Segment> segments, std::span<std::int32_t> hit) const override;
+    void transmittance(std::span<const Segment> segments, std::span<float> out) const override;
     std::uint64_t rays_traced() const override;
 
     struct Hit {
@@ -46,9 +48,10 @@ public:
 
 private:
     /// The batched traversal occluded() and first_hit() share (embree_scene.cpp).
-    template <typename Ray, typename Trace, typename Read>
+    template <typename Ray, typename Trace, typename Read, typename Prepare>
     void trace_batches(const char* what, const char* call, std::span<const Segment> segments,
-                       std::size_t results, Trace&& trace, Read&& read) const;
+                       std::size_t results, RTCIntersectContext* context, Trace&& trace,
+                       Read&& read, Prepare&& prepare) const;
 
     struct Impl;
     std::unique_ptr<Impl> impl_;

@@ -21,17 +21,26 @@
 
 namespace penumbra::solver {
 
-/// \brief Power bookkeeping of a solve, W per channel. emitted = absorbed + escaped + residual
-///        up to discretisation error (reported as imbalance).
+/// \brief Power bookkeeping of a solve, W per channel. emitted = absorbed + escaped + glazing
+///        + residual up to discretisation error (reported as imbalance).
 struct PowerBalance {
-    /// By emissive elements and point lights, and by the sun: the power its direct light
-    /// delivers to the scene's surfaces (Σ E_direct,sun A), none of which escapes.
+    /// By emissive elements and point lights, and by the sun and the sky: the power their
+    /// direct light delivers to the scene's surfaces (Σ E_direct A), none of which escapes.
     RgbD emitted;
-    RgbD absorbed; ///< Σ (1 − ρ) H A over elements
-    RgbD escaped;  ///< leaving the scene through openings (estimated by its own rays)
+    RgbD absorbed; ///< Σ (1 − ρ) H A over opaque elements
+    /// Leaving the scene through openings and (T(θ) of it) through glazing, estimated by
+    /// its own rays.
+    RgbD escaped;
+    /// What panes of glazing absorb and reflect of the light that reaches them from inside:
+    /// Σ (1 − T_h) H A over their elements, T_h their hemispherical transmittance (the part
+    /// they let through is in escaped).
+    RgbD glazing;
     RgbD residual; ///< unshot power left when the solve stopped
-    /// (emitted − absorbed − escaped − residual) / emitted, luminance-weighted.
+    /// (emitted − absorbed − escaped − glazing − residual) / emitted, luminance-weighted.
     double relative_imbalance() const;
+    /// \brief Books irradiance \p h (W/m²) on \p area m² of a surface of \p patch: absorbed
+    ///        by an opaque one (1 − ρ of it), glazing's for a pane.
+    void receive(const Patch& patch, const RgbD& h, double area);
 };
 
 struct SolveStats {

@@ -20,7 +20,7 @@ Hierarchy::Hierarchy(const RadiosityMesh& mesh) {
         level.push_back(0);
         emission.push_back(p.emission);
         reflectance.push_back(p.reflectance);
-        opaque.push_back(p.opaque ? 1 : 0);
+        opaque.push_back(p.opaque() ? 1 : 0);
     }
 }
 

@@ -336,10 +336,13 @@ double escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibi
         Vec3 dir = sample_cosine_hemisphere(geo.normal[i], rng.next_double(), rng.next_double());
         segments[r] = {Vec3f(from), Vec3f(dir), 0.0f, reach};
     }
-    std::vector<std::uint8_t> blocked(segments.size());
-    visibility.occluded(segments, blocked);
-    auto misses = std::count(blocked.begin(), blocked.end(), std::uint8_t(0));
-    return double(misses) / double(segments.size());
+    // Through panes of glazing their T(θ) escapes (PowerBalance::escaped).
+    std::vector<float> t(segments.size());
+    visibility.transmittance(segments, t);
+    double open = 0;
+    for (float x : t)
+        open += double(x);
+    return open / double(segments.size());
 }
 
 namespace {

@@ -16,6 +16,7 @@
 #include "core/rng.h"
 #include "kernels/form_factor.h"
 #include "sources/point_lights.h"
+#include "sources/sky_light.h"
 #include "sources/sun_light.h"
 
 namespace penumbra::solver {
@@ -44,11 +45,12 @@ constexpr int k_twin_child[4] = {0, 2, 1, 3};
 
 LinkSet::LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, LinkStore& store,
                  ClusterTables* tables, const VisibilityQuery& visibility,
-                 const std::vector<PointLight>& lights, const Sun* sun, RefineSettings settings)
+                 const std::vector<PointLight>& lights, const Sun* sun, const Sky* sky,
+                 RefineSettings settings)
     : h_(h), twin_(twin), store_(store), links_(store.links_), light_links_(store.light_links_),
       offsets_(store.offsets_), cluster_links_(store.cluster_links_), tables_(tables),
       tree_(tables ? tables->tree_ : nullptr), visibility_(visibility), lights_(lights), sun_(sun),
-      settings_(settings) {}
+      sky_(sky), settings_(settings) {}
 
 Link LinkSet::make_link(std::uint32_t q, std::uint32_t p) const {
     if (centres_occluded(q, p)) // a plane between them proves them dark
@@ -118,6 +120,8 @@ LightLink LinkSet::make_light_link(std::uint32_t q, LightId id) const {
     const LightSource source = id.source();
     if (std::holds_alternative<SunSource>(source))
         return make_sun_link(q);
+    if (std::holds_alternative<SkySource>(source))
+        return make_sky_link(q);
     const std::uint32_t l = std::get<PointSource>(source).index;
     const PointLight& light = lights_[l];
     const Vec3 pos = light.position;
@@ -163,6 +167,18 @@ LightLink LinkSet::make_sun_link(std::uint32_t q) const {
     return {q, LightId(SunSource{}), s.irradiance, 0, std::uint8_t(s.partial ? 1 : 0)};
 }
 
+// The sky's link: its irradiance on the receiver, with the spread of its values at three
+// points of it for the oracle, so that refinement follows the light from a window rather
+// than every partly hidden view of the sky (indoors, all of them). Panes of glazing let the
+// sky through and take none of it.
+LightLink LinkSet::make_sky_link(std::uint32_t q) const {
+    if (!h_.opaque[q])
+        return {q, LightId(SkySource{}), Rgb{}, 0, 0};
+    const SkyIrradiance s = sky_triangle_irradiance(
+        *sky_, oriented(h_, q), settings_.offset, h_.diagonal, q, visibility_, settings_.rows.seed);
+    return {q, LightId(SkySource{}), s.irradiance, s.spread, 0};
+}
+
 bool LinkSet::linkable(std::uint32_t q, std::uint32_t p) const {
     return p != q && twin_[q] != std::int32_t(p) && can_radiate(h_, p) &&
            faces(h_, q, p, 1e-9 * h_.diagonal);
@@ -199,7 +215,9 @@ void LinkSet::link_lights() {
     for (std::uint32_t l = 0; l < lights_.size(); ++l)
         lights.emplace_back(PointSource{l});
     if (sun_)
-        lights.emplace_back(SunSource{}); // the sun last
+        lights.emplace_back(SunSource{}); // the sun after the point lights
+    if (sky_)
+        lights.emplace_back(SkySource{});
     for (const LightId light : lights) {
         std::vector<LightLink> made(r);
         parallel_for_index(

@@ -45,7 +45,7 @@ class LinkSet {
 public:
     LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, LinkStore& store, ClusterTables* tables,
             const VisibilityQuery& visibility, const std::vector<PointLight>& lights,
-            const Sun* sun, RefineSettings settings);
+            const Sun* sun, const Sky* sky, RefineSettings settings);
 
     /// Links between all pairs of roots that face each other, and from every light to every
     /// root it can see.
@@ -79,8 +79,8 @@ public:
         make_exact_pair(q, p, out.first, out.second);
         return out;
     }
-    /// What the sun's links deliver, Σ irradiance × receiver area (W per channel).
-    RgbD sun_power() const { return store_.sun_power(h_); }
+    /// What the sun's and the sky's links deliver, Σ irradiance × receiver area (W per channel).
+    RgbD distant_power() const { return store_.distant_power(h_); }
 
 private:
     Link make_link(std::uint32_t receiver, std::uint32_t source) const;
@@ -94,6 +94,7 @@ private:
     void make_pair_links(std::size_t first, bool indexed);
     LightLink make_light_link(std::uint32_t receiver, LightId light) const;
     LightLink make_sun_link(std::uint32_t receiver) const;
+    LightLink make_sky_link(std::uint32_t receiver) const;
     void subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<float>& b_range);
     bool refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     bool refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
@@ -260,6 +261,7 @@ private:
     const VisibilityQuery& visibility_;
     const std::vector<PointLight>& lights_;
     const Sun* sun_ = nullptr; ///< null without a sun
+    const Sky* sky_ = nullptr; ///< null without a sky
     RefineSettings settings_;
     /// Within one refine(), per link: its oracle already said keep. Radiosities do not change
     /// during refine() and new nodes take their parent's values, so it would say keep again:

@@ -25,10 +25,10 @@ const Link* LinkStore::find_link(std::uint32_t receiver, std::uint32_t source,
     return it != end && it->source == source ? &*it : nullptr;
 }
 
-RgbD LinkStore::sun_power(const Hierarchy& h) const {
+RgbD LinkStore::distant_power(const Hierarchy& h) const {
     RgbD sum;
     for (const LightLink& l : light_links_)
-        if (std::holds_alternative<SunSource>(l.light.source()))
+        if (at_infinity(l.light.source()))
             sum += RgbD(l.irradiance) * h.area[l.receiver];
     return sum;
 }

@@ -120,9 +120,9 @@ public:
     std::size_t link_count() const {
         return links_.size() + light_links_.size() + cluster_links_.size();
     }
-    /// What the sun's links (light index \p sun) deliver, Σ irradiance × receiver area (W
-    /// per channel): the sun's power in the balance.
-    RgbD sun_power(const Hierarchy& h) const;
+    /// What the links of the sources at infinity (the sun, the sky) deliver, Σ irradiance ×
+    /// receiver area (W per channel): their power in the balance.
+    RgbD distant_power(const Hierarchy& h) const;
     /// Moves the element links (or the cluster links) out, leaving the store without them.
     MappedArray<Link> take_links() { return std::exchange(links_, {}); }
     MappedArray<ClusterLink> take_cluster_links() { return std::exchange(cluster_links_, {}); }

@@ -10,6 +10,7 @@
 
 #include "core/rng.h"
 #include "kernels/form_factor.h"
+#include "sources/sky_light.h"
 #include "sources/sun_light.h"
 
 namespace penumbra::solver {
@@ -147,6 +148,12 @@ Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
                                      rays_per_source, visibility, sun_rng);
             sum += RgbD(sun.irradiance) * (cos_theta * v);
         }
+    }
+    if (sources.sky) {
+        Pcg32 sky_rng =
+            Pcg32::for_stream(RngPurpose::sky_visibility, p.id, 3, std::uint64_t(p.purpose), seed);
+        sum += sky_point_irradiance(*sources.sky, p.position + p.normal * geo.offset, p.normal,
+                                    geo.diagonal, visibility, k_sky_point_quadrature, sky_rng);
     }
     return Rgb(float(sum.r), float(sum.g), float(sum.b));
 }

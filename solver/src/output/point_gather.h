@@ -13,13 +13,14 @@
 
 namespace penumbra::solver {
 
-/// What a point can gather from: emitting elements, point lights and the sun (direct),
-/// reflecting elements (indirect).
+/// What a point can gather from: emitting elements, point lights, the sun and the sky
+/// (direct), reflecting elements (indirect).
 struct GatherSources {
     std::vector<std::uint32_t> emitters; ///< elements with non-zero emission
     std::vector<Rgb> emission;           ///< per element, πL (W/m²)
     std::vector<PointLight> lights;
     std::optional<Sun> sun;
+    std::optional<Sky> sky;
 };
 
 struct GatherPoint {
@@ -31,7 +32,9 @@ struct GatherPoint {
 
 /// \brief Direct irradiance (W/m²) at \p p from the sources. The sun's share,
 ///        irradiance · cos θ · V, takes V from sun_point_visibility with rays from the stream
-///        (sun_visibility, p.id, 2, p.purpose, seed). \p emitters: the emitting elements
+///        (sun_visibility, p.id, 2, p.purpose, seed); the sky's, sky_point_irradiance with
+///        k_sky_point_quadrature, from the stream (sky_visibility, p.id, 3, p.purpose, seed).
+///        \p emitters: the emitting elements
 ///        to gather from, if not all of sources.emitters (increasing).
 Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
                   const VisibilityQuery& visibility, const GatherPoint& p, int rays_per_source,

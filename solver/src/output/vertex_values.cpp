@@ -17,6 +17,7 @@ GatherSources direct_sources(const Scene& scene, const std::vector<Rgb>& element
             sources.emitters.push_back(std::uint32_t(e));
     sources.lights = scene.point_lights;
     sources.sun = scene.sun;
+    sources.sky = scene.sky;
     return sources;
 }
 

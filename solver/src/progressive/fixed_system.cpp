@@ -11,6 +11,7 @@
 #include "core/parallel.h"
 #include "progressive/shooting_state.h"
 #include "sources/point_lights.h"
+#include "sources/sky_light.h"
 #include "sources/sun_light.h"
 
 namespace penumbra::solver {
@@ -47,6 +48,7 @@ FixedSystem build_fixed_system(const Scene& scene, const RadiosityMesh& mesh,
                                const ElementGeometry& geo, const VisibilityQuery& visibility,
                                const RowSettings& settings, const Context& ctx) {
     FixedSystem s;
+    s.mesh = &mesh;
     const std::size_t n = geo.size();
     ShootingState lights(mesh);
     s.emission = lights.emission;
@@ -56,6 +58,8 @@ FixedSystem build_fixed_system(const Scene& scene, const RadiosityMesh& mesh,
         s.light_emitted += l.power();
     if (scene.sun) // the sun's power is what its direct light delivers
         s.light_emitted += shoot_sun(lights, geo, *scene.sun, visibility, settings, ctx);
+    if (scene.sky) // and the sky's
+        s.light_emitted += shoot_sky(lights, geo, *scene.sky, visibility, settings, ctx);
     s.light_direct = lights.h_direct;
     s.light_escaped = lights.escaped;
     std::vector<Row> rows(n);
@@ -171,9 +175,7 @@ PowerBalance fixed_balance(const FixedSystem& s, const ElementGeometry& geo, con
     for (std::size_t e = 0; e < s.size(); ++e) {
         pb.emitted += RgbD(s.emission[e]) * geo.area[e];
         pb.escaped += RgbD(r.radiosity[e]) * (geo.area[e] * s.escape[e]);
-        RgbD h = RgbD(r.h_direct[e]) + RgbD(r.h_indirect[e]);
-        RgbD a = RgbD(1, 1, 1) - RgbD(s.reflectance[e]);
-        pb.absorbed += RgbD(h.r * a.r, h.g * a.g, h.b * a.b) * geo.area[e];
+        pb.receive(s.patch(e), RgbD(r.h_direct[e]) + RgbD(r.h_indirect[e]), geo.area[e]);
     }
     pb.residual = pb.emitted * unconverged_power_fraction;
     return pb;

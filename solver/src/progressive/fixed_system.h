@@ -21,9 +21,11 @@ struct FixedSystem {
     std::vector<float> k;       ///< K_ji
     std::vector<double> escape; ///< per source element, fraction of its power escaping
     std::vector<Rgb> emission, reflectance;
-    std::vector<Rgb> light_direct;     ///< irradiance from point lights, per element
-    RgbD light_emitted, light_escaped; ///< W
+    std::vector<Rgb> light_direct;       ///< irradiance from point lights, per element
+    RgbD light_emitted, light_escaped;   ///< W
+    const RadiosityMesh* mesh = nullptr; ///< outlives the system
     std::size_t size() const { return emission.size(); }
+    const Patch& patch(std::size_t e) const { return mesh->patch_of(std::uint32_t(e)); }
 };
 
 FixedSystem build_fixed_system(const Scene& scene, const RadiosityMesh& mesh,

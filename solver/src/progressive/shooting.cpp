@@ -16,6 +16,7 @@
 #include "output/vertex_values.h"
 #include "progressive/shooting_state.h"
 #include "sources/point_lights.h"
+#include "sources/sky_light.h"
 #include "sources/sun_light.h"
 
 namespace penumbra::solver {
@@ -174,15 +175,14 @@ void add_ambient(ShootingState& s, const ElementGeometry& geo) {
     }
 }
 
-PowerBalance balance_of(const ShootingState& s, const ElementGeometry& geo) {
+PowerBalance balance_of(const ShootingState& s, const RadiosityMesh& mesh,
+                        const ElementGeometry& geo) {
     PowerBalance pb;
     pb.emitted = s.emitted;
     pb.escaped = s.escaped;
     for (std::size_t e = 0; e < geo.size(); ++e) {
-        RgbD absorbed_frac = RgbD(1.0, 1.0, 1.0) - RgbD(s.reflectance[e]);
-        RgbD h = RgbD(s.h_direct[e]) + RgbD(s.h_indirect[e]);
-        pb.absorbed +=
-            RgbD(h.r * absorbed_frac.r, h.g * absorbed_frac.g, h.b * absorbed_frac.b) * geo.area[e];
+        pb.receive(mesh.patch_of(std::uint32_t(e)), RgbD(s.h_direct[e]) + RgbD(s.h_indirect[e]),
+                   geo.area[e]);
         pb.residual += (RgbD(s.unshot_emitted[e]) + RgbD(s.unshot_reflected[e])) * geo.area[e];
     }
     return pb;
@@ -194,7 +194,19 @@ double PowerBalance::relative_imbalance() const {
     double e = to_photometric(emitted);
     if (e <= 0)
         return 0;
-    return (e - to_photometric(absorbed) - to_photometric(escaped) - to_photometric(residual)) / e;
+    return (e - to_photometric(absorbed) - to_photometric(escaped) - to_photometric(glazing) -
+            to_photometric(residual)) /
+           e;
+}
+
+void PowerBalance::receive(const Patch& patch, const RgbD& h, double area) {
+    if (patch.glazing) {
+        const RgbD kept = RgbD(1, 1, 1) - RgbD(patch.glazing->hemispherical_transmittance());
+        glazing += RgbD(h.r * kept.r, h.g * kept.g, h.b * kept.b) * area;
+        return;
+    }
+    const RgbD a = RgbD(1, 1, 1) - RgbD(patch.reflectance);
+    absorbed += RgbD(h.r * a.r, h.g * a.g, h.b * a.b) * area;
 }
 
 Solution solve_shooting(const Scene& scene, const RadiosityMesh& mesh,
@@ -212,9 +224,11 @@ Solution solve_shooting(const Scene& scene, const RadiosityMesh& mesh,
         shoot_point_lights(state, geo, scene.point_lights, visibility, row_settings, ctx);
         if (scene.sun)
             shoot_sun(state, geo, *scene.sun, visibility, row_settings, ctx);
+        if (scene.sky)
+            shoot_sky(state, geo, *scene.sky, visibility, row_settings, ctx);
         LoopResult loop =
             shooting_loop(state, mesh, geo, visibility, scene.solver, row_settings, observer, ctx);
-        PowerBalance balance = balance_of(state, geo);
+        PowerBalance balance = balance_of(state, mesh, geo);
         if (scene.solver.ambient)
             add_ambient(state, geo);
         Solution solution =

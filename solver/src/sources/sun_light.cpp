@@ -22,11 +22,25 @@ float sun_reach(double diagonal) {
     return float(2.0 * diagonal + 1.0);
 }
 
-double open_fraction(const std::vector<Segment>& segments, const VisibilityQuery& visibility) {
-    std::vector<std::uint8_t> blocked(segments.size());
-    visibility.occluded(segments, blocked);
-    const auto open = std::count(blocked.begin(), blocked.end(), std::uint8_t(0));
-    return double(open) / double(segments.size());
+/// The transmittances of some segments: their mean (the fraction open, panes of glazing
+/// counting their T(θ)) and whether they all agree.
+struct OpenFraction {
+    double mean = 0;
+    bool agree = true;
+};
+
+OpenFraction open_fraction(const std::vector<Segment>& segments,
+                           const VisibilityQuery& visibility) {
+    std::vector<float> t(segments.size());
+    visibility.transmittance(segments, t);
+    OpenFraction out;
+    double open = 0;
+    for (float x : t) {
+        open += double(x);
+        out.agree = out.agree && x == t.front();
+    }
+    out.mean = open / double(segments.size());
+    return out;
 }
 
 // The direction of the disc at the point (a, b) of [0, 1)² by Shirley & Chiu's concentric
@@ -52,8 +66,8 @@ Vec3 sun_disc_direction(const Sun& sun, double u1, double u2) {
         .to_world(Vec3(r * std::cos(phi), r * std::sin(phi), z));
 }
 
-int sun_rays_open(const Sun& sun, const OrientedTriangle& target, double offset, double diagonal,
-                  int rays, const VisibilityQuery& visibility, Pcg32& rng) {
+SunRays sun_rays_open(const Sun& sun, const OrientedTriangle& target, double offset,
+                      double diagonal, int rays, const VisibilityQuery& visibility, Pcg32& rng) {
     std::vector<Segment> segments(std::size_t(std::max(1, rays)));
     const float reach = sun_reach(diagonal);
     for (Segment& seg : segments) {
@@ -62,9 +76,16 @@ int sun_rays_open(const Sun& sun, const OrientedTriangle& target, double offset,
         const Vec3 dir = sun_disc_direction(sun, rng.next_double(), rng.next_double());
         seg = {Vec3f(from), Vec3f(dir), 0.0f, reach};
     }
-    std::vector<std::uint8_t> blocked(segments.size());
-    visibility.occluded(segments, blocked);
-    return int(std::count(blocked.begin(), blocked.end(), std::uint8_t(0)));
+    std::vector<float> t(segments.size());
+    visibility.transmittance(segments, t);
+    SunRays out;
+    int blocked = 0;
+    for (float x : t) {
+        out.open += double(x);
+        blocked += x > 0.0f ? 0 : 1;
+    }
+    out.partial = blocked > 0 && blocked < rays;
+    return out;
 }
 
 double sun_point_visibility(const Sun& sun, const Vec3& from, double diagonal, int rays,
@@ -83,9 +104,9 @@ double sun_point_visibility(const Sun& sun, const Vec3& from, double diagonal, i
                               0.0f, reach});
         }
     }
-    const double probe = open_fraction(probes, visibility);
-    if (probe == 0.0 || probe == 1.0)
-        return probe;
+    const OpenFraction probe = open_fraction(probes, visibility);
+    if (probe.agree)
+        return probe.mean;
     const int side = int(std::ceil(std::sqrt(double(k_penumbra_rays_factor * std::max(rays, 1)))));
     std::vector<Segment> segments;
     segments.reserve(std::size_t(side * side));
@@ -96,7 +117,7 @@ double sun_point_visibility(const Sun& sun, const Vec3& from, double diagonal, i
                  Vec3f(sun_disc_direction_concentric(sun, (i + rng.next_double()) / side,
                                                      (j + rng.next_double()) / side)),
                  0.0f, reach});
-    return open_fraction(segments, visibility);
+    return open_fraction(segments, visibility).mean;
 }
 
 SunIrradiance sun_triangle_irradiance(const Sun& sun, const OrientedTriangle& target, double offset,
@@ -107,9 +128,8 @@ SunIrradiance sun_triangle_irradiance(const Sun& sun, const OrientedTriangle& ta
         return {};
     Pcg32 rng = Pcg32::for_stream(RngPurpose::sun_visibility, key, kind, 0, rows.seed);
     const int rays = std::max(1, rows.visibility_rays);
-    const int open = sun_rays_open(sun, target, offset, diagonal, rays, visibility, rng);
-    return {sun.irradiance * float(cos_theta * double(open) / double(rays)),
-            open > 0 && open < rays};
+    const SunRays open = sun_rays_open(sun, target, offset, diagonal, rays, visibility, rng);
+    return {sun.irradiance * float(cos_theta * open.open / double(rays)), open.partial};
 }
 
 RgbD shoot_sun(ShootingState& state, const ElementGeometry& geo, const Sun& sun,

@@ -20,11 +20,17 @@ namespace penumbra::solver {
 ///        numbers in [0, 1): u1 picks the ring, u2 the azimuth.
 Vec3 sun_disc_direction(const Sun& sun, double u1, double u2);
 
+/// What the rays toward the sun from a triangle found.
+struct SunRays {
+    double open = 0;      ///< Σ of their transmittances (1 each unblocked, T(θ) through panes)
+    bool partial = false; ///< some blocked and some not
+};
+
 /// \brief Visible fraction of the sun's disc from the points of \p target (lifted by
 ///        \p offset along its normal): \p rays rays from uniformly drawn points toward
-///        uniformly drawn directions of the disc, from \p rng. Returns the number unblocked.
-int sun_rays_open(const Sun& sun, const OrientedTriangle& target, double offset, double diagonal,
-                  int rays, const VisibilityQuery& visibility, Pcg32& rng);
+///        uniformly drawn directions of the disc, from \p rng.
+SunRays sun_rays_open(const Sun& sun, const OrientedTriangle& target, double offset,
+                      double diagonal, int rays, const VisibilityQuery& visibility, Pcg32& rng);
 
 /// \brief Visible fraction of the sun's disc from the point \p from (already lifted off its
 ///        surface). 17 probe rays (the centre and 16 directions on the rim) decide where they

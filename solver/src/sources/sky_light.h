@@ -1,0 +1,64 @@
+#pragma once
+// The sky and its ground (core/sky.h) as a source for every solver: the irradiance
+// ∫ L(ω) T(ω) cos θ dω over a receiver's hemisphere, with T the visibility query's
+// transmittance (0 behind opaque surfaces, the panes' T(θ) through glazing). The hemisphere
+// is cut into cells of equal projected solid angle; each cell is sampled by 2 × 2 jittered
+// directions and split into four where they disagree (a window's edge, the horizon, the
+// circumsolar peak), so rays gather where the sky is partly hidden. Like the sun, the sky has
+// no finite power: what it emits into a scene is what it delivers to the surfaces.
+
+#include <cstdint>
+#include <span>
+
+#include "core/context.h"
+#include "core/rng.h"
+#include "core/sky.h"
+#include "core/visibility.h"
+#include "kernels/element_rows.h"
+#include "progressive/shooting_state.h"
+
+namespace penumbra::solver {
+
+/// \brief The cells of a sky integral: rows × columns in (sin²θ, φ) to start with (each of
+///        projected solid angle π / (rows × columns)), split in four up to max_depth times.
+///        A feature of the sky's visibility smaller than half a starting cell can be missed.
+struct SkyQuadrature {
+    int rows = 16;
+    int columns = 64;
+    int max_depth = 6;
+};
+
+/// For points (sensors, mesh vertices): starting cells about 2.8° wide in azimuth, split
+/// down to about 0.05°.
+inline constexpr SkyQuadrature k_sky_point_quadrature{16, 64, 6};
+/// For the elements' light links, whose values only feed interreflection and the oracle.
+inline constexpr SkyQuadrature k_sky_element_quadrature{8, 32, 3};
+
+/// \brief The sky's irradiance (W/m² per channel) at \p from (already lifted off its surface)
+///        on a plane of unit normal \p n, with the jitter drawn from \p rng.
+RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, double diagonal,
+                          const VisibilityQuery& visibility, const SkyQuadrature& quadrature,
+                          Pcg32& rng);
+
+/// The sky's irradiance on one triangle.
+struct SkyIrradiance {
+    Rgb irradiance; ///< mean over the triangle, W/m²
+    /// Largest minus smallest of the sky's irradiance (W/m², brightest channel) at the
+    /// triangle's three quadrature points: its variation for the refinement oracle.
+    float spread = 0;
+};
+
+/// \brief The sky's irradiance on \p target by the three-point rule exact for quadratics
+///        (Strang & Fix: barycentrics (2/3, 1/6, 1/6) and its rotations, equal weights), each
+///        point lifted by \p offset, with k_sky_element_quadrature and the stream (sky_visibility,
+///        key, point, seed).
+SkyIrradiance sky_triangle_irradiance(const Sky& sky, const OrientedTriangle& target, double offset,
+                                      double diagonal, std::uint64_t key,
+                                      const VisibilityQuery& visibility, std::uint64_t seed);
+
+/// \brief Shoots the sky once: every element receives sky_triangle_irradiance. Returns the
+///        delivered power Σ E A (W per channel), which is also added to state.emitted.
+RgbD shoot_sky(ShootingState& state, const ElementGeometry& geo, const Sky& sky,
+               const VisibilityQuery& visibility, const RowSettings& settings, const Context& ctx);
+
+} // namespace penumbra::solver

@@ -152,8 +152,11 @@ Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
     if (sources.sky) {
         Pcg32 sky_rng =
             Pcg32::for_stream(RngPurpose::sky_visibility, p.id, 3, std::uint64_t(p.purpose), seed);
-        sum += sky_point_irradiance(*sources.sky, p.position + p.normal * geo.offset, p.normal,
-                                    geo.diagonal, visibility, k_sky_point_quadrature, sky_rng);
+        sum += sky_point_irradiance(
+            *sources.sky, p.position + p.normal * geo.offset, p.normal, geo.diagonal, visibility,
+            p.purpose == RngPurpose::sensor_visibility ? k_sky_point_quadrature
+                                                       : k_sky_vertex_quadrature,
+            sky_rng);
     }
     return Rgb(float(sum.r), float(sum.g), float(sum.b));
 }

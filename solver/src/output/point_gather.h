@@ -33,7 +33,8 @@ struct GatherPoint {
 /// \brief Direct irradiance (W/m²) at \p p from the sources. The sun's share,
 ///        irradiance · cos θ · V, takes V from sun_point_visibility with rays from the stream
 ///        (sun_visibility, p.id, 2, p.purpose, seed); the sky's, sky_point_irradiance with
-///        k_sky_point_quadrature, from the stream (sky_visibility, p.id, 3, p.purpose, seed).
+///        k_sky_point_quadrature for sensors (k_sky_vertex_quadrature else), from the stream
+///        (sky_visibility, p.id, 3, p.purpose, seed).
 ///        \p emitters: the emitting elements
 ///        to gather from, if not all of sources.emitters (increasing).
 Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "core/parallel.h"
@@ -20,18 +22,29 @@ constexpr double k_edge_contrast = 0.1;
 /// the circumsolar peak).
 constexpr double k_luminance_ratio = 1.5;
 
-/// A cell of the hemisphere in (u, v) = (sin²θ, φ / 2π): its projected solid angle is
-/// π · du · dv.
+/// A cell of the hemisphere: cell (i, j) of the (side << depth)² grid over the unit square,
+/// which Shirley & Chiu's concentric map takes to the unit disc, area for area, and the disc
+/// lifts to the hemisphere (Malley's method): every cell has projected solid angle
+/// π / (side << depth)², and cells stay nearly square, also at the normal.
 struct Cell {
-    double u0 = 0, v0 = 0, du = 0, dv = 0;
+    std::int64_t i = 0, j = 0;
     int depth = 0;
 };
 
-/// The direction of (u, v) around \p frame's normal.
-Vec3 cell_direction(const Frame& frame, double u, double v) {
-    const double sin_theta = std::sqrt(u), cos_theta = std::sqrt(std::max(0.0, 1.0 - u));
-    const double phi = 2.0 * k_pi * v;
-    return frame.to_world(Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta));
+/// What a cell's four samples saw.
+enum class CellSight : std::uint8_t { hidden, open, varies };
+
+/// The direction of the point (a, b) of the unit square around \p frame's normal.
+Vec3 cell_direction(const Frame& frame, double a, double b) {
+    const double x = 2 * a - 1, y = 2 * b - 1;
+    double r = 0, phi = 0;
+    if (x != 0 || y != 0) {
+        const bool wide = std::abs(x) > std::abs(y);
+        r = wide ? x : y;
+        phi = wide ? (k_pi / 4) * (y / x) : (k_pi / 2) - (k_pi / 4) * (x / y);
+    }
+    const double dx = r * std::cos(phi), dy = r * std::sin(phi);
+    return frame.to_world(Vec3(dx, dy, std::sqrt(std::max(0.0, 1.0 - dx * dx - dy * dy))));
 }
 
 /// Rays toward the sky end this far away: out of the scene from any point in it.
@@ -39,40 +52,52 @@ float sky_reach(double diagonal) {
     return float(2.0 * diagonal + 1.0);
 }
 
-std::vector<Cell> starting_cells(const SkyQuadrature& q) {
-    std::vector<Cell> cells;
-    cells.reserve(std::size_t(q.rows * q.columns));
-    for (int i = 0; i < q.rows; ++i)
-        for (int j = 0; j < q.columns; ++j)
-            cells.push_back(
-                {double(i) / q.rows, double(j) / q.columns, 1.0 / q.rows, 1.0 / q.columns, 0});
-    return cells;
-}
-
 /// Whether the four samples of a cell (transmittances \p t, sky radiances \p l) call for
 /// finer cells: some blocked and some not, panes and open sky mixed, or a steep sky.
-bool cell_varies(std::span<const float> t, std::span<const Rgb> l) {
+CellSight sight_of(std::span<const float> t, std::span<const Rgb> l) {
     const auto [t_lo, t_hi] = std::minmax_element(t.begin(), t.end());
     if (*t_hi <= 0.0f)
-        return false; // all hidden
+        return CellSight::hidden;
     if (*t_lo <= 0.0f || *t_hi - *t_lo > k_edge_contrast * *t_hi)
-        return true;
+        return CellSight::varies;
     double lo = 1e300, hi = 0;
     for (const Rgb& c : l) {
         const double y = to_photometric(c);
         lo = std::min(lo, y);
         hi = std::max(hi, y);
     }
-    return hi > k_luminance_ratio * lo;
+    return hi > k_luminance_ratio * lo ? CellSight::varies : CellSight::open;
 }
 
-/// The four children of \p c.
-void split(const Cell& c, std::vector<Cell>& out) {
-    const double du = c.du / 2, dv = c.dv / 2;
-    for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j)
-            out.push_back({c.u0 + i * du, c.v0 + j * dv, du, dv, c.depth + 1});
-}
+/// The cells of one level with what each saw, to find the neighbours of an edge.
+class LevelSights {
+public:
+    LevelSights(const std::vector<Cell>& cells, const std::vector<CellSight>& sights,
+                std::int64_t side)
+        : side_(side) {
+        for (std::size_t k = 0; k < cells.size(); ++k)
+            sight_.emplace(key(cells[k].i, cells[k].j), sights[k]);
+    }
+    /// Whether an edge-adjacent cell of this level saw otherwise than \p sight: an edge the
+    /// samples of \p c missed may run through it.
+    bool beside_an_edge(const Cell& c, CellSight sight) const {
+        const std::int64_t di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+        for (int k = 0; k < 4; ++k) {
+            const std::int64_t i = c.i + di[k], j = c.j + dj[k];
+            if (i < 0 || j < 0 || i >= side_ || j >= side_)
+                continue;
+            const auto it = sight_.find(key(i, j));
+            if (it != sight_.end() && it->second != sight)
+                return true;
+        }
+        return false;
+    }
+
+private:
+    std::int64_t key(std::int64_t i, std::int64_t j) const { return i * side_ + j; }
+    std::int64_t side_;
+    std::unordered_map<std::int64_t, CellSight> sight_;
+};
 
 } // namespace
 
@@ -82,36 +107,48 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
     const Frame frame = Frame::from_normal(n);
     const float reach = sky_reach(diagonal);
     const Vec3f origin(from);
-    std::vector<Cell> cells = starting_cells(quadrature), finer;
+    std::vector<Cell> cells, finer;
+    for (int i = 0; i < quadrature.side; ++i)
+        for (int j = 0; j < quadrature.side; ++j)
+            cells.push_back({i, j, 0});
     std::vector<Segment> rays;
     std::vector<Rgb> radiance;
     std::vector<float> t;
+    std::vector<CellSight> sights;
     RgbD sum;
-    while (!cells.empty()) {
+    for (int depth = 0; !cells.empty(); ++depth) {
+        const std::int64_t side = std::int64_t(quadrature.side) << depth;
+        const double d = 1.0 / double(side);
         rays.clear();
         radiance.clear();
         for (const Cell& c : cells)
             for (int s = 0; s < 4; ++s) {
-                const double u = c.u0 + c.du * ((s / 2) + rng.next_double()) / 2;
-                const double v = c.v0 + c.dv * ((s % 2) + rng.next_double()) / 2;
-                const Vec3 dir = cell_direction(frame, u, v);
+                const double a = d * (double(c.i) + ((s / 2) + rng.next_double()) / 2);
+                const double b = d * (double(c.j) + ((s % 2) + rng.next_double()) / 2);
+                const Vec3 dir = cell_direction(frame, a, b);
                 rays.push_back({origin, Vec3f(dir), 0.0f, reach});
                 radiance.push_back(sky.radiance(dir));
             }
         t.resize(rays.size());
         visibility.transmittance(rays, t);
+        sights.clear();
+        for (std::size_t k = 0; k < cells.size(); ++k)
+            sights.push_back(sight_of({t.data() + 4 * k, 4}, {radiance.data() + 4 * k, 4}));
+        const LevelSights level(cells, sights, side);
         finer.clear();
         for (std::size_t k = 0; k < cells.size(); ++k) {
-            const std::span<const float> tk(t.data() + 4 * k, 4);
-            const std::span<const Rgb> lk(radiance.data() + 4 * k, 4);
-            if (cells[k].depth < quadrature.max_depth && cell_varies(tk, lk)) {
-                split(cells[k], finer);
+            const Cell& c = cells[k];
+            if (depth < quadrature.max_depth &&
+                (sights[k] == CellSight::varies || level.beside_an_edge(c, sights[k]))) {
+                for (int a = 0; a < 2; ++a)
+                    for (int b = 0; b < 2; ++b)
+                        finer.push_back({2 * c.i + a, 2 * c.j + b, depth + 1});
                 continue;
             }
             RgbD cell;
-            for (int s = 0; s < 4; ++s)
-                cell += RgbD(lk[std::size_t(s)]) * double(tk[std::size_t(s)]);
-            sum += cell * (k_pi * cells[k].du * cells[k].dv / 4.0);
+            for (std::size_t s = 4 * k; s < 4 * k + 4; ++s)
+                cell += RgbD(radiance[s]) * double(t[s]);
+            sum += cell * (k_pi * d * d / 4.0);
         }
         cells.swap(finer);
     }
@@ -128,7 +165,9 @@ SkyIrradiance sky_triangle_irradiance(const Sky& sky, const OrientedTriangle& ta
         const Vec3 p = target.v[std::size_t(i)] * k_near +
                        target.v[std::size_t((i + 1) % 3)] * k_far +
                        target.v[std::size_t((i + 2) % 3)] * k_far + target.n * offset;
-        Pcg32 rng = Pcg32::for_stream(RngPurpose::sky_visibility, key, std::uint64_t(i), 0, seed);
+        // The same jitter at the three points, so that their difference is the light's
+        // variation over the triangle, not the samples' noise.
+        Pcg32 rng = Pcg32::for_stream(RngPurpose::sky_visibility, key, 0, 0, seed);
         const RgbD e = sky_point_irradiance(sky, p, target.n, diagonal, visibility,
                                             k_sky_element_quadrature, rng);
         sum += e;

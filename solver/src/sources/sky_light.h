@@ -2,10 +2,11 @@
 // The sky and its ground (core/sky.h) as a source for every solver: the irradiance
 // ∫ L(ω) T(ω) cos θ dω over a receiver's hemisphere, with T the visibility query's
 // transmittance (0 behind opaque surfaces, the panes' T(θ) through glazing). The hemisphere
-// is cut into cells of equal projected solid angle; each cell is sampled by 2 × 2 jittered
-// directions and split into four where they disagree (a window's edge, the horizon, the
-// circumsolar peak), so rays gather where the sky is partly hidden. Like the sun, the sky has
-// no finite power: what it emits into a scene is what it delivers to the surfaces.
+// is cut into cells of equal projected solid angle (Shirley & Chiu's concentric map); each cell is
+// sampled by 2 × 2 jittered directions and split into four where they disagree (a window's edge,
+// the horizon, the circumsolar peak) or where a neighbour saw otherwise (an edge between its
+// samples), so rays gather where the sky is partly hidden. Like the sun, the sky has no finite
+// power: what it emits into a scene is what it delivers to the surfaces.
 
 #include <cstdint>
 #include <span>
@@ -19,20 +20,20 @@
 
 namespace penumbra::solver {
 
-/// \brief The cells of a sky integral: rows × columns in (sin²θ, φ) to start with (each of
-///        projected solid angle π / (rows × columns)), split in four up to max_depth times.
-///        A feature of the sky's visibility smaller than half a starting cell can be missed.
+/// \brief The cells of a sky integral: side × side over the hemisphere to start with, each
+///        of projected solid angle π / side², split in four up to max_depth times. A feature of
+///        the sky's visibility smaller than half a starting cell can be missed.
 struct SkyQuadrature {
-    int rows = 16;
-    int columns = 64;
+    int side = 32;
     int max_depth = 6;
 };
 
-/// For points (sensors, mesh vertices): starting cells about 2.8° wide in azimuth, split
-/// down to about 0.05°.
-inline constexpr SkyQuadrature k_sky_point_quadrature{16, 64, 6};
+/// For sensors: 1 024 starting cells (about 6° across at the normal), split down to 0.1°.
+inline constexpr SkyQuadrature k_sky_point_quadrature{32, 6};
+/// For mesh vertices, which are many: 256 cells to start with, as fine at edges.
+inline constexpr SkyQuadrature k_sky_vertex_quadrature{16, 7};
 /// For the elements' light links, whose values only feed interreflection and the oracle.
-inline constexpr SkyQuadrature k_sky_element_quadrature{8, 32, 3};
+inline constexpr SkyQuadrature k_sky_element_quadrature{16, 3};
 
 /// \brief The sky's irradiance (W/m² per channel) at \p from (already lifted off its surface)
 ///        on a plane of unit normal \p n, with the jitter drawn from \p rng.
@@ -50,8 +51,8 @@ struct SkyIrradiance {
 
 /// \brief The sky's irradiance on \p target by the three-point rule exact for quadratics
 ///        (Strang & Fix: barycentrics (2/3, 1/6, 1/6) and its rotations, equal weights), each
-///        point lifted by \p offset, with k_sky_element_quadrature and the stream (sky_visibility,
-///        key, point, seed).
+///        point lifted by \p offset, with k_sky_element_quadrature and the same jitter at the
+///        three, from the stream (sky_visibility, key, 0, 0, seed).
 SkyIrradiance sky_triangle_irradiance(const Sky& sky, const OrientedTriangle& target, double offset,
                                       double diagonal, std::uint64_t key,
                                       const VisibilityQuery& visibility, std::uint64_t seed);

@@ -73,7 +73,8 @@ std::pair<double, double> angles_above_horizon(double a, double b) {
 
 /// ∫ f(dir) cos θ dω over the upper hemisphere (dir·up > 0), in polar coordinates (γ, ψ)
 /// about the unit \p centre: ψ by the midpoint rule (periodic), γ by Gauss–Legendre on panels
-/// graded toward the centre.
+/// graded toward the centre. 5 760 evaluations: about 1e-5 relative for the CIE skies, 1e-4
+/// for Perez's (whose gradation is clamped at Dz = 0.01), against a 1200 × 2400 midpoint rule.
 template <class F>
 double upper_hemisphere_integral(const Compass& compass, const Vec3& centre, const F& f) {
     const double a = dot(centre, compass.up);
@@ -110,8 +111,8 @@ double upper_hemisphere_integral(const Compass& compass, const Vec3& centre, con
 Vec3 quadrature_centre(const Sky& sky) {
     const bool peaks_at_sun = std::holds_alternative<CieGeneralSky>(sky.model) ||
                               std::holds_alternative<PerezSky>(sky.model);
-    constexpr double min_sun_sine =
-        0.05; // 2.9°: below it the zenith-centred rule is the better one (tested to 1e-5)
+    // 2.9°: below it the zenith-centred rule is the better one (both tested to 1e-5).
+    constexpr double min_sun_sine = 0.05;
     return peaks_at_sun && dot(sky.sun_direction, sky.compass.up) >= min_sun_sine
                ? sky.sun_direction
                : sky.compass.up;
@@ -209,14 +210,31 @@ std::pair<double, double> sky_and_ground_weights(const Sky& sky, double dz) {
 
 } // namespace
 
-Rgb Sky::radiance(const Vec3& dir) const {
-    const auto [sky_weight, ground_weight] = sky_and_ground_weights(*this, dot(dir, compass.up));
+namespace {
+
+Rgb radiance_of(const Sky& sky, const RelativeLuminance& relative, const Vec3& dir) {
+    const auto [sky_weight, ground_weight] = sky_and_ground_weights(sky, dot(dir, sky.compass.up));
     Rgb result;
     if (sky_weight > 0)
-        result = colour * float(sky_weight * zenith_radiance * relative_luminance(dir));
+        result = sky.colour * float(sky_weight * sky.zenith_radiance * relative(dir));
     if (ground_weight > 0)
-        result += Rgb(float(ground_weight * *ground_radiance));
+        result += Rgb(float(ground_weight * *sky.ground_radiance));
     return result;
+}
+
+} // namespace
+
+Rgb Sky::radiance(const Vec3& dir) const {
+    return radiance_of(*this, RelativeLuminance(*this), dir);
+}
+
+void Sky::radiance(std::span<const Vec3> dirs, std::span<Rgb> out) const {
+    if (dirs.size() != out.size())
+        throw InternalError("Sky::radiance: " + std::to_string(dirs.size()) + " directions, " +
+                            std::to_string(out.size()) + " outputs");
+    const RelativeLuminance relative(*this);
+    for (std::size_t i = 0; i < dirs.size(); ++i)
+        out[i] = radiance_of(*this, relative, dirs[i]);
 }
 
 double Sky::horizontal_illuminance_lx() const {

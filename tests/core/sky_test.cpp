@@ -145,6 +145,19 @@ TEST(SkyHorizon, RadianceBlendIsTheWeightedMeanOfSkyAndGround) {
     EXPECT_TRUE(sky.radiance(-sky.compass.up).is_black());
 }
 
+TEST(SkyRadiance, ManyDirectionsAtOnceEqualOneAtATime) {
+    Sky sky = sky_of(PerezSky{2.5, 0.3}, 25, 140);
+    sky.ground_radiance = 4;
+    sky.horizon = Horizon::radiance_blend;
+    std::vector<Vec3> dirs;
+    for (int i = 0; i < 40; ++i)
+        dirs.push_back(sky.compass.direction(-80 + 4.3 * i, 17.0 * i));
+    std::vector<Rgb> batch(dirs.size());
+    sky.radiance(dirs, batch);
+    for (std::size_t i = 0; i < dirs.size(); ++i)
+        EXPECT_EQ(batch[i], sky.radiance(dirs[i])) << i;
+}
+
 // gensky 3 21 +12 -c -B 55.866 -g 0.2 (the office's sky A: 10 000 lx) wrote zenith 22.86 and
 // ground 3.557 W/(sr·m²); make_sky's closed-form scale gives them.
 TEST(MakeSky, OvercastScaleAndGroundMatchGensky) {

@@ -6,6 +6,7 @@
 // are the scene's: Compass says which way is up and which way is north.
 
 #include <optional>
+#include <span>
 #include <variant>
 
 #include "core/light.h"
@@ -84,6 +85,10 @@ struct Sky {
     ///        w_s = (Dz + 1.01)^10, w_g = (Dz + 1.01)^−10, Dz = dir·up, with the sky's
     ///        formula continued below the horizon as relative_luminance() does.
     Rgb radiance(const Vec3& dir) const;
+    /// \brief radiance() of each of \p dirs into \p out (the same size), with the sky's
+    ///        constants (normalisation, Perez's coefficients) computed once: for many
+    ///        directions (a single radiance() call costs about 0.2 µs).
+    void radiance(std::span<const Vec3> dirs, std::span<Rgb> out) const;
     /// \brief Luminance relative to the zenith's, without ground or blend. Above the horizon
     ///        the model's formula; at and below it the continuation the blend uses (as
     ///        skybright.cal and perezlum.cal do): the CIE gradation takes its horizon value,
@@ -92,7 +97,8 @@ struct Sky {
     double relative_luminance(const Vec3& dir) const;
     /// \brief The sky's unobstructed horizontal illuminance, lx: ∫ L cos θ dω over the upper
     ///        hemisphere (sky only, no sun; with Horizon::radiance_blend, the blended values),
-    ///        by quadrature to about 1e-6 relative for the CIE skies.
+    ///        by quadrature: about 1e-5 relative for the CIE skies, 1e-4 for Perez's; about
+    ///        1 ms.
     double horizontal_illuminance_lx() const;
     /// \brief ∫ relative_luminance cos θ dω over the upper hemisphere, sr: E_h / L_z of the
     ///        model alone (sharp horizon, no ground, no colour): π for a uniform sky.

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/solar_position.h"
 
 namespace penumbra {
 
@@ -314,16 +315,274 @@ PointLight parse_point_light(const Field& field, double metres_per_unit) {
     return light;
 }
 
-// "sun": {"direction": [x, y, z], "illuminance_lx": E or "irradiance_w_m2": E or [r, g, b],
-// "color": [r, g, b], "angular_diameter_deg": d}. The direction points toward the sun, is not
-// scaled by the units and is normalised; E is the direct normal irradiance (on a surface
-// facing the sun). `color` goes with `illuminance_lx` only: radiometric input carries its
-// colour in its channels.
-Sun parse_sun(const Field& field) {
-    field.expect_keys(
-        {"direction", "illuminance_lx", "irradiance_w_m2", "color", "angular_diameter_deg"});
+// ---- Daylight: site, sun positions from dates, sky (issue #30) --------------------------------
+
+double number_in(const Field& field, double lo, double hi, const char* range); // defined below
+
+/// The scene's compass and, if given, its site: what sun positions from dates and times need.
+struct Daylight {
+    Compass compass;
+    std::optional<Location> site;
+};
+
+/// Where the sun is, and on which day of the year (0 when given as a direction).
+struct SunPlacement {
+    Vec3 direction;
+    int day_of_year = 0;
+};
+
+/// The default north: +y made perpendicular to \p up, or −z when up is ±y (glTF's y-up scenes).
+Vec3 default_north(const Vec3& up) {
+    const Vec3 y(0, 1, 0);
+    return std::abs(up.y) > 0.999 ? Vec3(0, 0, -1) : normalize(y - up * up.y);
+}
+
+Daylight parse_daylight_frame(const Field& root, const Vec3& up) {
+    Daylight daylight;
+    daylight.compass.up = up;
+    daylight.compass.north = default_north(up);
+    if (!root.has("site"))
+        return daylight;
+    const Field site = root.child("site");
+    site.expect_keys({"latitude_deg", "longitude_deg", "time_zone_h", "north"});
+    Location where;
+    where.latitude_deg = number_in(site.required("latitude_deg"), -90, 90, "[-90, 90]");
+    where.longitude_deg =
+        number_in(site.required("longitude_deg"), -180, 180, "[-180, 180] (east-positive)");
+    where.time_zone_h =
+        number_in(site.required("time_zone_h"), -12, 14, "[-12, 14] (hours east of UTC)");
+    daylight.site = where;
+    if (site.has("north")) {
+        const Field field = site.child("north");
+        const Vec3 north = field.vec3();
+        const Vec3 level = north - up * dot(north, up);
+        if (!(length(level) > 1e-6 * length(north)))
+            field.fail("expected a non-zero vector not parallel to 'up'");
+        daylight.compass.north = normalize(level);
+    }
+    return daylight;
+}
+
+/// `time`: {"month", "day", "hour", "solar_time", "year"}, with the top-level `site`.
+SunPlacement parse_time(const Field& field, const Daylight& daylight) {
+    field.expect_keys({"year", "month", "day", "hour", "solar_time"});
+    if (!daylight.site)
+        field.fail("a sun position from a date and time needs the top-level 'site'");
+    LocalTime when;
+    if (field.has("year"))
+        when.year = int(field.child("year").integer(1800, 2200));
+    when.month = int(field.required("month").integer(1, 12));
+    constexpr int month_days[] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    when.day = int(field.required("day").integer(1, month_days[when.month - 1]));
+    if (when.month == 2 && when.day == 29 && day_of_year(when.year, 3, 1) == 60)
+        field.child("day").fail(fmt::format("{} is not a leap year", when.year));
+    const Field hour = field.required("hour");
+    when.hour = hour.number();
+    if (!(when.hour >= 0 && when.hour < 24))
+        hour.fail(fmt::format("must be in [0, 24), got {}", when.hour));
+    const bool solar = field.has("solar_time") && field.child("solar_time").boolean();
+    const SolarAngles angles = solar ? solar_position_at_solar_time(*daylight.site, when)
+                                     : solar_position(*daylight.site, when);
+    return {daylight.compass.direction(angles.altitude_deg, angles.azimuth_deg),
+            day_of_year(when.year, when.month, when.day)};
+}
+
+/// The sun's position under \p parent: exactly one of \p direction_key and `time`, or neither.
+std::optional<SunPlacement> parse_sun_placement(const Field& parent, const char* direction_key,
+                                                const Daylight& daylight) {
+    const bool by_direction = parent.has(direction_key), by_time = parent.has("time");
+    if (by_direction && by_time)
+        parent.fail(fmt::format("give '{}' or 'time', not both", direction_key));
+    if (by_time)
+        return parse_time(parent.child("time"), daylight);
+    if (by_direction)
+        return SunPlacement{unit_direction(parent.child(direction_key), " (toward the sun)")};
+    return std::nullopt;
+}
+
+double altitude_deg(const Vec3& direction, const Compass& compass) {
+    return std::asin(std::clamp(dot(direction, compass.up), -1.0, 1.0)) * 180 / k_pi;
+}
+
+SkyModel parse_sky_model(const Field& sky) {
+    const Field model = sky.required("model");
+    const std::string name = model.string();
+    if (sky.has("type") && name != "cie_general")
+        sky.child("type").fail("is only used with \"model\": \"cie_general\"");
+    if (name == "uniform")
+        return UniformSky{};
+    if (name == "cie_overcast")
+        return CieOvercastSky{};
+    if (name == "cie_general")
+        return CieGeneralSky{int(sky.required("type").integer(1, 15))};
+    if (name == "perez")
+        return PerezSky{};
+    model.fail(fmt::format("unknown sky model '{}' (known: uniform, cie_overcast, cie_general, "
+                           "perez)",
+                           name));
+}
+
+/// Exactly one of `horizontal_illuminance_lx` and `zenith_luminance_cd_m2`.
+SkyLevel parse_sky_level(const Field& sky) {
+    const bool by_illuminance = sky.has("horizontal_illuminance_lx");
+    if (by_illuminance == sky.has("zenith_luminance_cd_m2"))
+        sky.fail("give exactly one of 'horizontal_illuminance_lx' and 'zenith_luminance_cd_m2'");
+    if (by_illuminance)
+        return HorizontalIlluminance{
+            number_in(sky.child("horizontal_illuminance_lx"), 0, 1e9, "[0, 1e9]")};
+    return ZenithLuminance{number_in(sky.child("zenith_luminance_cd_m2"), 0, 1e9, "[0, 1e9]")};
+}
+
+/// A Perez sky's weather: the W/m² pair or the lx pair (at most the extraterrestrial values).
+SolarComponents parse_solar_components(const Field& sky) {
+    const bool radiometric = sky.has("direct_normal_w_m2") || sky.has("diffuse_horizontal_w_m2");
+    const bool photometric = sky.has("direct_normal_lx") || sky.has("diffuse_horizontal_lx");
+    if (radiometric == photometric)
+        sky.fail("a 'perez' sky needs 'direct_normal_w_m2' and 'diffuse_horizontal_w_m2', or "
+                 "'direct_normal_lx' and 'diffuse_horizontal_lx'");
+    if (radiometric)
+        return SolarIrradiance{
+            number_in(sky.required("direct_normal_w_m2"), 0, 1415, "[0, 1415]"),
+            number_in(sky.required("diffuse_horizontal_w_m2"), 0, 1415, "[0, 1415]")};
+    return SolarIlluminance{
+        number_in(sky.required("direct_normal_lx"), 0, 132000, "[0, 132000]"),
+        number_in(sky.required("diffuse_horizontal_lx"), 0, 132000, "[0, 132000]")};
+}
+
+/// `ground_reflectance` (default 0.2) or `"ground": "geometry"` (none).
+std::optional<double> parse_ground(const Field& sky) {
+    if (!sky.has("ground"))
+        return sky.has("ground_reflectance")
+                   ? number_in(sky.child("ground_reflectance"), 0, 1, "[0, 1]")
+                   : 0.2;
+    const Field ground = sky.child("ground");
+    if (ground.string() != "geometry")
+        ground.fail(fmt::format("expected \"geometry\", got \"{}\"", ground.string()));
+    if (sky.has("ground_reflectance"))
+        sky.child("ground_reflectance").fail("give 'ground_reflectance' or 'ground', not both");
+    return std::nullopt;
+}
+
+Horizon parse_horizon(const Field& sky, bool has_ground) {
+    if (!sky.has("horizon"))
+        return Horizon::sharp;
+    const Field field = sky.child("horizon");
+    const std::string name = field.string();
+    if (name == "sharp")
+        return Horizon::sharp;
+    if (name != "radiance_blend")
+        field.fail(fmt::format("unknown horizon '{}' (known: sharp, radiance_blend)", name));
+    if (!has_ground)
+        field.fail("\"radiance_blend\" blends the sky with the ground hemisphere: not with "
+                   "\"ground\": \"geometry\"");
+    return Horizon::radiance_blend;
+}
+
+/// No position for a sky that does not need one; an error for one that does.
+std::optional<SunPlacement> no_sun_needed(const Field& sky, bool uses_sun) {
+    if (uses_sun)
+        sky.fail("this sky needs the sun's position: give 'time' (with 'site'), 'sun_direction', "
+                 "or a top-level 'sun'");
+    return std::nullopt;
+}
+
+/// Where the sky's sun is: the sky's own `sun_direction` or `time`, else the top-level sun's.
+/// The uniform and overcast skies take none.
+std::optional<SunPlacement> parse_sky_sun(const Field& sky, const SkyModel& model,
+                                          const Daylight& daylight, const Scene& scene) {
+    std::optional<SunPlacement> own = parse_sun_placement(sky, "sun_direction", daylight);
+    const bool uses_sun =
+        std::holds_alternative<CieGeneralSky>(model) || std::holds_alternative<PerezSky>(model);
+    if (!own)
+        return scene.sun && uses_sun ? std::optional(SunPlacement{scene.sun->direction})
+                                     : no_sun_needed(sky, uses_sun);
+    const Field key = sky.child(sky.has("time") ? "time" : "sun_direction");
+    if (!uses_sun)
+        key.fail("is only used by the 'cie_general' and 'perez' skies");
+    if (scene.sun) {
+        const double apart =
+            std::acos(std::clamp(dot(own->direction, scene.sun->direction), -1.0, 1.0)) * 180 /
+            k_pi;
+        if (apart > 0.1)
+            key.fail(fmt::format("puts the sun {:.2f}° from 'sun': give the sun's position once "
+                                 "(the sky takes the top-level sun's)",
+                                 apart));
+    }
+    return own;
+}
+
+/// `"model": "perez"`: the sky and its sun from one hour's weather (perez_sky_and_sun).
+void parse_perez_sky(const Field& sky, const Daylight& daylight, const SunPlacement& placement,
+                     Scene& scene) {
+    for (const char* key : {"horizontal_illuminance_lx", "zenith_luminance_cd_m2", "color"})
+        if (sky.has(key))
+            sky.child(key).fail("is not used by a 'perez' sky (its weather sets its level)");
+    if (scene.sun)
+        sky.fail("a 'perez' sky brings its own sun (from its direct-normal value): remove the "
+                 "top-level 'sun' and give the position as the sky's 'time' or 'sun_direction'");
+    int day = placement.day_of_year;
+    if (sky.has("day_of_year")) {
+        if (day != 0)
+            sky.child("day_of_year").fail("the sky's 'time' already gives the day");
+        day = int(sky.child("day_of_year").integer(1, 366));
+    }
+    if (day == 0)
+        sky.fail("a 'perez' sky with 'sun_direction' needs 'day_of_year' (or give 'time')");
+    const std::optional<double> ground = parse_ground(sky);
+    PerezSkyAndSun result =
+        perez_sky_and_sun(parse_solar_components(sky), daylight.compass, placement.direction, day,
+                          ground, parse_horizon(sky, ground.has_value()));
+    scene.sky = result.sky;
+    scene.sun = result.sun;
+}
+
+/// `sky`: see docs/scene-format.md. Runs after `sun`, whose position and light it can use.
+void parse_sky(const Field& sky, const Daylight& daylight, Scene& scene) {
+    sky.expect_keys({"model", "type", "horizontal_illuminance_lx", "zenith_luminance_cd_m2",
+                     "ground_reflectance", "ground", "horizon", "time", "sun_direction", "color",
+                     "direct_normal_w_m2", "diffuse_horizontal_w_m2", "direct_normal_lx",
+                     "diffuse_horizontal_lx", "day_of_year"});
+    const SkyModel model = parse_sky_model(sky);
+    const std::optional<SunPlacement> placement = parse_sky_sun(sky, model, daylight, scene);
+    if (std::holds_alternative<PerezSky>(model))
+        return parse_perez_sky(sky, daylight, *placement, scene);
+    for (const char* key : {"direct_normal_w_m2", "diffuse_horizontal_w_m2", "direct_normal_lx",
+                            "diffuse_horizontal_lx", "day_of_year"})
+        if (sky.has(key))
+            sky.child(key).fail("is only used by a 'perez' sky");
+    SkyDescription description;
+    description.model = model;
+    description.compass = daylight.compass;
+    if (placement) {
+        const double altitude = altitude_deg(placement->direction, daylight.compass);
+        if (altitude < 0)
+            sky.fail(fmt::format("the sun is {:.2f}° below the horizon: the CIE general skies "
+                                 "need it above",
+                                 -altitude));
+        description.sun_direction = placement->direction;
+    }
+    description.level = parse_sky_level(sky);
+    description.ground_reflectance = parse_ground(sky);
+    description.horizon = parse_horizon(sky, description.ground_reflectance.has_value());
+    description.colour = parse_light_color(sky);
+    const double sun_lx = scene.sun ? horizontal_illuminance_lx(*scene.sun, daylight.compass) : 0;
+    scene.sky = make_sky(description, sun_lx);
+}
+
+// "sun": {"direction": [x, y, z] or "time": {...}, "illuminance_lx": E or "irradiance_w_m2": E
+// or [r, g, b], "color": [r, g, b], "angular_diameter_deg": d}. The direction points toward the
+// sun (from `time`: its position at the site), is not scaled by the units and is normalised; E is
+// the direct normal irradiance (on a surface facing the sun). `color` goes with `illuminance_lx`
+// only: radiometric input carries its colour in its channels.
+Sun parse_sun(const Field& field, const Daylight& daylight) {
+    field.expect_keys({"direction", "time", "illuminance_lx", "irradiance_w_m2", "color",
+                       "angular_diameter_deg"});
     Sun sun;
-    sun.direction = unit_direction(field.required("direction"), " (toward the sun)");
+    const std::optional<SunPlacement> placement = parse_sun_placement(field, "direction", daylight);
+    sun.direction = placement ? placement->direction : field.required("direction").vec3();
+    if (field.has("time") && altitude_deg(sun.direction, daylight.compass) <= 0)
+        field.child("time").fail(fmt::format("the sun is {:.2f}° below the horizon then",
+                                             -altitude_deg(sun.direction, daylight.compass)));
     const bool photometric = field.has("illuminance_lx");
     if (photometric == field.has("irradiance_w_m2"))
         field.fail("give exactly one of 'illuminance_lx' and 'irradiance_w_m2'");
@@ -517,7 +776,7 @@ void parse_surfaces(const Field& root, SceneSpec& spec) {
             .fail("the scene has no geometry: give 'geometry' files or inline 'polygons'");
 }
 
-/// point_lights, sun, sensors, camera and image, mesher, solver.
+/// point_lights, site, sun, sky, sensors, camera and image, mesher, solver.
 void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
     const double scale = spec.metres_per_unit;
     Scene& scene = spec.scene;
@@ -526,8 +785,11 @@ void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
         for (std::size_t i = 0; i < lights.array_size(); ++i)
             scene.point_lights.push_back(parse_point_light(lights.element(i), scale));
     }
+    const Daylight daylight = parse_daylight_frame(root, up);
     if (root.has("sun"))
-        scene.sun = parse_sun(root.child("sun"));
+        scene.sun = parse_sun(root.child("sun"), daylight);
+    if (root.has("sky"))
+        parse_sky(root.child("sky"), daylight, scene);
     if (root.has("sensors"))
         parse_sensors(root.child("sensors"), scale, spec);
     if (root.has("camera"))
@@ -549,7 +811,7 @@ SceneSpec parse_scene_json(const std::string& text, const std::string& file_name
     const Json json = parse_json(text, file_name);
     const Field root(json, "", file_name);
     root.expect_keys({"name", "units", "up", "geometry", "polygons", "materials", "point_lights",
-                      "sun", "sensors", "camera", "image", "mesher", "solver"});
+                      "sun", "site", "sky", "sensors", "camera", "image", "mesher", "solver"});
     SceneSpec spec;
     spec.scene.file = file_name;
     if (root.has("name"))

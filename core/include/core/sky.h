@@ -6,8 +6,10 @@
 // are the scene's: Compass says which way is up and which way is north.
 
 #include <optional>
+#include <span>
 #include <variant>
 
+#include "core/light.h"
 #include "core/rgb.h"
 #include "core/vec.h"
 
@@ -43,10 +45,11 @@ struct CieGeneralSky {
 /// \brief Perez's all-weather sky (Perez, Seals & Michalsky 1993) for one hour's weather:
 ///        its five coefficients follow from the sky's clearness ε and brightness Δ, which
 ///        follow from the direct-normal and diffuse-horizontal irradiance and the sun's zenith
-///        angle (and the day of the year, for the extraterrestrial irradiance).
+///        angle (and the day of the year, for the extraterrestrial irradiance); see
+///        perez_sky_and_sun().
 struct PerezSky {
-    double clearness = 1;  ///< ε, ≥ 1
-    double brightness = 0; ///< Δ, ≥ 0
+    double clearness = 1;     ///< ε, in [1, 12.01)
+    double brightness = 0.01; ///< Δ, in [0.01, 0.6]
 };
 
 /// \brief The relative luminance distribution of a sky.
@@ -59,8 +62,8 @@ enum class Horizon {
 };
 
 /// \brief A sky and its ground, resolved to absolute radiance (W/(sr·m²); luminance / 179 lm/W,
-///        rgb.h). Built by the scene loader from what the scene gives (a horizontal
-///        illuminance, a zenith luminance, or weather data): see make_sky().
+///        rgb.h). Built by make_sky() from a horizontal illuminance or a zenith luminance, or by
+///        perez_sky_and_sun() from weather data. A plain value: thread-safe to read.
 struct Sky {
     SkyModel model = CieOvercastSky{};
     Compass compass;
@@ -70,18 +73,114 @@ struct Sky {
     double zenith_radiance = 0; ///< W/(sr·m²) at the zenith
     Rgb colour{1.0f};           ///< relative colour of the sky's radiance (luminance 1)
     Horizon horizon = Horizon::sharp;
-    /// Radiance of the uniform ground hemisphere below the horizon, W/(sr·m²); unset: nothing
-    /// below the horizon (the scene's own ground geometry receives the sky).
+    /// Radiance of the uniform grey ground hemisphere below the horizon, W/(sr·m²) in every
+    /// channel; unset: nothing below the horizon (the scene's own ground geometry receives the
+    /// sky), and Horizon::radiance_blend has nothing to blend with (the horizon stays sharp).
     std::optional<double> ground_radiance;
 
     /// \brief Radiance arriving from the unit direction \p dir (pointing away from the scene,
-    ///        toward the sky or the ground), W/(sr·m²) per channel.
+    ///        toward the sky or the ground), W/(sr·m²) per channel. Sharp horizon: the sky
+    ///        above (dir·up > 0), the ground at and below. radiance_blend (with a ground):
+    ///        skybright.cal's mean (w_s sky + w_g ground) / (w_s + w_g) in every direction,
+    ///        w_s = (Dz + 1.01)^10, w_g = (Dz + 1.01)^−10, Dz = dir·up, with the sky's
+    ///        formula continued below the horizon as relative_luminance() does.
     Rgb radiance(const Vec3& dir) const;
-    /// \brief Luminance relative to the zenith's, above the horizon (no ground, no blend).
+    /// \brief radiance() of each of \p dirs into \p out (the same size), with the sky's
+    ///        constants (normalisation, Perez's coefficients) computed once: for many
+    ///        directions (a single radiance() call costs about 0.2 µs).
+    void radiance(std::span<const Vec3> dirs, std::span<Rgb> out) const;
+    /// \brief Luminance relative to the zenith's, without ground or blend. Above the horizon
+    ///        the model's formula; at and below it the continuation the blend uses (as
+    ///        skybright.cal and perezlum.cal do): the CIE gradation takes its horizon value,
+    ///        Perez's is evaluated at Dz = max(Dz, 0.01), the overcast sky keeps (1 + 2 Dz)/3.
+    ///        Never negative (Perez's formula can be, and is clamped at 0 as gendaymtx does).
     double relative_luminance(const Vec3& dir) const;
     /// \brief The sky's unobstructed horizontal illuminance, lx: ∫ L cos θ dω over the upper
-    ///        hemisphere (sky only, no sun; with Horizon::radiance_blend, the blended values).
+    ///        hemisphere (sky only, no sun; with Horizon::radiance_blend, the blended values),
+    ///        by quadrature: about 1e-5 relative for the CIE skies, 1e-4 for Perez's; about
+    ///        1 ms.
     double horizontal_illuminance_lx() const;
+    /// \brief ∫ relative_luminance cos θ dω over the upper hemisphere, sr: E_h / L_z of the
+    ///        model alone (sharp horizon, no ground, no colour): π for a uniform sky.
+    double horizontal_illuminance_per_zenith_luminance() const;
 };
+
+/// \brief A sky's level: its unobstructed horizontal illuminance (the sky alone, no sun).
+struct HorizontalIlluminance {
+    double lx = 10000;
+};
+/// \brief A sky's level: its zenith luminance.
+struct ZenithLuminance {
+    double cd_m2 = 0;
+};
+using SkyLevel = std::variant<HorizontalIlluminance, ZenithLuminance>;
+
+/// \brief What make_sky() needs to build a sky from a model.
+struct SkyDescription {
+    SkyModel model = CieOvercastSky{};
+    Compass compass;
+    Vec3 sun_direction{0, 0, 1}; ///< unit, toward the sun (for CieGeneralSky and PerezSky)
+    SkyLevel level;
+    /// Reflectance ρ_g of the uniform ground hemisphere, in [0, 1]; unset: no ground (the
+    /// scene's own geometry is the ground).
+    std::optional<double> ground_reflectance = 0.2;
+    Horizon horizon = Horizon::sharp;
+    Rgb colour{1.0f}; ///< relative colour of the sky; rescaled to luminance 1
+};
+
+/// \brief The sky of \p description. A HorizontalIlluminance level scales the model so that
+///        its horizontal_illuminance_per_zenith_luminance() (the sharp sky, as gensky -B and
+///        CIE 171 normalise) gives that illuminance; with Horizon::radiance_blend the blended
+///        sky's own horizontal_illuminance_lx() then differs slightly, as in Radiance. The
+///        ground's radiance is ρ_g E_h / π with E_h the global horizontal illuminance, the sky's
+///        plus \p sun_horizontal_illuminance_lx (the sun's direct light on the unobstructed
+///        horizontal: see horizontal_illuminance_lx(const Sun&, const Compass&)), converted at
+///        179 lm/W (Radiance's convention).
+/// \throws InternalError for a CIE type outside [1, 15], a negative level or reflectance.
+Sky make_sky(const SkyDescription& description, double sun_horizontal_illuminance_lx = 0);
+
+/// \brief The sun's direct illuminance on an unobstructed horizontal surface, lx:
+///        its normal illuminance × max(0, sin altitude).
+double horizontal_illuminance_lx(const Sun& sun, const Compass& compass);
+
+/// \brief One hour's solar components as weather files give them, radiometric (W/m²).
+struct SolarIrradiance {
+    double direct_normal_w_m2 = 0;
+    double diffuse_horizontal_w_m2 = 0;
+};
+/// \brief One hour's solar components, photometric (lx).
+struct SolarIlluminance {
+    double direct_normal_lx = 0;
+    double diffuse_horizontal_lx = 0;
+};
+using SolarComponents = std::variant<SolarIrradiance, SolarIlluminance>;
+
+/// \brief A Perez sky and the sun that goes with it.
+struct PerezSkyAndSun {
+    Sky sky;
+    /// Unset when the sun is at or below the horizon or its direct illuminance is 0.
+    std::optional<Sun> sun;
+};
+
+/// \brief The Perez all-weather sky and the sun of one hour, as Radiance's gendaylit builds
+///        them (gendaymtx the same): ε and Δ from the direct-normal and diffuse-horizontal
+///        irradiance (Perez et al. 1990: Kasten's air mass, 1367 W/m² times the eccentricity
+///        correction of \p day_of_year), clamped to ε ∈ [1, 12.01), Δ ∈ [0.01, 0.6];
+///        illuminances from Perez et al. 1990's diffuse and direct luminous efficacies with
+///        2 cm of precipitable water (gendaylit's default); irradiance from illuminance input
+///        by iterating those efficacies. The sky's luminance integrates to the diffuse
+///        horizontal illuminance (sharp sky, as make_sky()); the sun's normal irradiance is
+///        the direct normal illuminance / 179 lm/W in every channel (Radiance's convention:
+///        radiometric values carry the luminous ones at 179 lm/W), with a 0.533° disc. The
+///        ground: ρ_g × (diffuse + direct × sin altitude) / (π 179) as gendaymtx computes it.
+///        A sun below the horizon is taken at the horizon for the sky's shape (gendaymtx
+///        does the same); no diffuse light gives a black sky.
+/// \param sun_direction unit, toward the sun, in the compass's axes
+/// \param day_of_year 1–366
+/// \throws InternalError for negative components or a day outside [1, 366].
+PerezSkyAndSun perez_sky_and_sun(const SolarComponents& weather, const Compass& compass,
+                                 const Vec3& sun_direction, int day_of_year,
+                                 std::optional<double> ground_reflectance = 0.2,
+                                 Horizon horizon = Horizon::sharp);
 
 } // namespace penumbra

@@ -120,6 +120,10 @@ void apply_materials(Scene& scene, const std::vector<MaterialSpec>& specs) {
             material.two_sided = *spec.two_sided;
         if (spec.emission_two_sided)
             material.emission_two_sided = *spec.emission_two_sided;
+        if (spec.thin_glass) {
+            material.reflectance = Rgb{}; // a pane reflects only specularly
+            material.lobe = *spec.thin_glass;
+        }
     }
 }
 

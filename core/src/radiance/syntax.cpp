@@ -56,10 +56,14 @@ public:
         return line;
     }
 
+    /// The primitive being read begins here: an early end of the file is reported at its line.
+    void mark() { primitive_line_ = line_; }
+
     /// The next word; \p what names it in the error at the end of the file.
     std::string word(const std::string& what) {
         if (at_end())
-            fail(fmt::format("the file ends where {} was expected", what));
+            throw InputError(file_, "", fmt::format("the file ends where {} was expected", what),
+                             primitive_line_);
         const std::size_t start = pos_;
         while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_])))
             ++pos_;
@@ -75,6 +79,7 @@ private:
     const std::string& file_;
     std::size_t pos_ = 0;
     int line_ = 1;
+    int primitive_line_ = 1;
 };
 
 long parse_count(Cursor& in, const std::string& what) {
@@ -100,6 +105,7 @@ double parse_real(Cursor& in, const std::string& what) {
 
 Primitive parse_primitive(Cursor& in, const std::string& file) {
     Primitive p;
+    in.mark();
     p.where = {file, in.line()};
     p.modifier = in.word("a primitive");
     p.type = in.word("the primitive's type");

@@ -317,8 +317,8 @@ TEST(Radiance, ErrorsNameFileAndLine) {
                      5, {"'p'", "defined again", "test.rad:10"});
     expect_rad_error("void brightfunc f\n2 skybr perezlum.cal\n0\n3 1 2 3\n", 1,
                      {"perezlum.cal", "not supported yet"});
-    expect_rad_error("void brightfunc f\n2 skybr skybright.cal\n0\n7 4 1 1 1 0 0 1\n", 1,
-                     {"intermediate", "not supported yet"});
+    expect_rad_error("void brightfunc f\n2 skybr skybright.cal\n0\n7 5 1 1 1 0 0 1\n", 1,
+                     {"brightfunc 'f'", "sky type", "got 5"});
     expect_rad_error("void brightfunc f\n2 other my.cal\n0\n3 2 1 1\n", 1,
                      {"brightfunc 'f'", "skybright.cal"});
     expect_rad_error("void light s\n0\n0\n3 1 1 1\ns source a\n0\n0\n4 0 0 1 0.5\n"
@@ -331,7 +331,7 @@ TEST(Radiance, ErrorsNameFileAndLine) {
     expect_rad_error("!gensky 3 21 +12 -y 2024\n", 1, {"!gensky", "'-y'"});
     expect_rad_error("!gensky 13 21 +12\n", 1, {"!gensky", "month"});
     expect_rad_error("!gensky 3 21 12EST\n", 1, {"!gensky", "time-zone"});
-    expect_rad_error("!gensky 3 21 +12 -i\n", 1, {"intermediate", "not supported yet"});
+    expect_rad_error("!gensky 3 21 +12 -x\n", 1, {"!gensky", "'-x'"});
 }
 
 } // namespace

@@ -47,6 +47,11 @@ std::optional<SurfaceMaterial> material_from(const Primitive& p);
 ///        (CIE clear), 2 (CIE overcast) or 3 (uniform) and their argument counts.
 SkyFunction sky_function_from(const Primitive& p, const Affine& xf);
 
+/// \brief skybright.cal's `intersky` without its A2 / A4: the intermediate sky's luminance at
+///        zenith angle \p eta and angle \p gamma from the sun, for the sun at zenith angle
+///        \p sun_zenith (radians), in units of its own.
+double skybright_intersky(double eta, double gamma, double sun_zenith);
+
 /// \brief Throws InputError at \p p's line unless it has \p strings string arguments, no
 ///        integer arguments and one of the real argument counts \p reals (\p names lists what
 ///        they are, for the message).

@@ -1,6 +1,7 @@
 // skybright.cal's `skybr` (the function gensky's skies call) as Penumbra's sky models. Its
-// arguments: A1 the sky type, A2 the zenith brightness, A3 the ground's, and for the clear and
-// intermediate skies A4 a normalisation and A5–A7 the direction toward the sun.
+// arguments: A1 the sky type (1 clear, 2 overcast, 3 uniform, 4 intermediate), A2 the zenith
+// brightness, A3 the ground's, and for the clear and intermediate skies A4 a normalisation and
+// A5–A7 the direction toward the sun.
 
 #include <algorithm>
 #include <cmath>
@@ -30,8 +31,7 @@ double cie_clear_indicatrix(double chi) {
 /// 0.274 where the standard's φ(0) = 1 − e^(−0.32) = 0.27385, so its zenith radiance is
 /// A2 · 0.99945, not A2. Penumbra's model is L_z f(γ) φ(θ) / (f(Z_s) φ(0)); equal to
 /// skybright.cal's (to 1e-4) with the L_z below.
-double clear_sky_zenith(double a2, double a4, const Vec3& sun_up) {
-    const double sun_zenith_angle = std::acos(std::clamp(sun_up.z, -1.0, 1.0));
+double clear_sky_zenith(double a2, double a4, double sun_zenith_angle) {
     const double phi_zenith = 1 - std::exp(-0.32);
     return a2 * cie_clear_indicatrix(sun_zenith_angle) * phi_zenith / a4;
 }
@@ -53,18 +53,15 @@ void check_function(const Primitive& p) {
 SkyFunction sky_function_from(const Primitive& p, const Affine& xf) {
     check_function(p);
     const double type = p.reals.empty() ? 0 : p.reals[0];
-    if (type == 4)
-        fail(p.where, fmt::format("brightfunc '{}': the CIE intermediate sky (skybright.cal type "
-                                  "4, gensky -i) is not supported yet (issue #30)",
-                                  p.id));
-    if (type != 1 && type != 2 && type != 3)
+    if (type != 1 && type != 2 && type != 3 && type != 4)
         fail(p.where, fmt::format("brightfunc '{}': the sky type (first real argument) must be "
-                                  "1 (CIE clear), 2 (CIE overcast) or 3 (uniform), got {}",
+                                  "1 (CIE clear), 2 (CIE overcast), 3 (uniform) or 4 "
+                                  "(intermediate), got {}",
                                   p.id, type));
-    const bool clear = type == 1;
-    expect_arguments(p, 2, {clear ? std::size_t(7) : std::size_t(3)},
-                     clear ? "type zenith ground normalisation sun-x sun-y sun-z"
-                           : "type zenith ground");
+    const bool with_sun = type == 1 || type == 4;
+    expect_arguments(p, 2, {with_sun ? std::size_t(7) : std::size_t(3)},
+                     with_sun ? "type zenith ground normalisation sun-x sun-y sun-z"
+                              : "type zenith ground");
     SkyFunction f;
     f.compass = {.up = xf.direction({0, 0, 1}), .north = xf.direction({0, 1, 0})};
     f.sun_direction = f.compass.up;
@@ -72,7 +69,7 @@ SkyFunction sky_function_from(const Primitive& p, const Affine& xf) {
     if (!(p.reals[1] >= 0 && f.ground_radiance >= 0))
         fail(p.where,
              fmt::format("brightfunc '{}': the zenith and ground brightness must be >= 0", p.id));
-    if (!clear) {
+    if (!with_sun) {
         f.model = type == 2 ? SkyModel{CieOvercastSky{}} : SkyModel{UniformSky{}};
         f.zenith_radiance = p.reals[1]; // (1 + 2 cos θ)/3 and 1 at the zenith: A2 exactly
         return f;
@@ -82,8 +79,16 @@ SkyFunction sky_function_from(const Primitive& p, const Affine& xf) {
         fail(p.where, fmt::format("brightfunc '{}': the normalisation must be > 0 and the sun "
                                   "direction non-zero",
                                   p.id));
-    f.model = CieGeneralSky{12};
-    f.zenith_radiance = clear_sky_zenith(p.reals[1], p.reals[3], normalize(sun));
+    const double sun_zenith = std::acos(std::clamp(normalize(sun).z, -1.0, 1.0));
+    if (type == 1) {
+        f.model = CieGeneralSky{12};
+        f.zenith_radiance = clear_sky_zenith(p.reals[1], p.reals[3], sun_zenith);
+    } else {
+        // skybright.cal: A2 × intersky / A4; radiance_intermediate_sky is intersky over its
+        // zenith value, of which gensky's A4 is an approximation.
+        f.model = RadianceIntermediateSky{};
+        f.zenith_radiance = p.reals[1] * skybright_intersky(0, sun_zenith, sun_zenith) / p.reals[3];
+    }
     f.sun_direction = xf.direction(sun);
     return f;
 }

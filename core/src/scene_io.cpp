@@ -22,6 +22,8 @@
 #include "core/files.h"
 
 #include "geometry_import.h"
+#include "radiance/radiance_import.h"
+#include "radiance/scene_builder.h"
 #include "scene_json.h"
 
 namespace penumbra {
@@ -68,7 +70,7 @@ void merge_geometry(Scene& scene, ImportedGeometry geometry) {
 }
 
 void add_geometry_file(Scene& scene, const std::string& base_dir, const std::string& file,
-                       double metres_per_unit) {
+                       double metres_per_unit, RadianceImport& radiance) {
     const std::string path = resolve(base_dir, file);
     std::error_code ec;
     if (fs::is_directory(path, ec))
@@ -78,7 +80,26 @@ void add_geometry_file(Scene& scene, const std::string& base_dir, const std::str
     if (!fs::is_regular_file(path, ec))
         throw InputError(path, "geometry",
                          fmt::format("geometry file not found (listed in '{}')", scene.file));
-    merge_geometry(scene, import_geometry(path, file, metres_per_unit));
+    merge_geometry(scene, is_radiance_file(path) ? radiance.read(path)
+                                                 : import_geometry(path, file, metres_per_unit));
+}
+
+/// The sun and sky of the Radiance files; the scene file must not give them too.
+void add_radiance_sources(Scene& scene, const radiance::Sources& sources) {
+    if (sources.sun) {
+        if (scene.sun)
+            throw InputError(scene.file, "sun",
+                             fmt::format("the sun is given twice: here and by {}",
+                                         radiance::describe(sources.sun_where)));
+        scene.sun = sources.sun;
+    }
+    if (sources.sky) {
+        if (scene.sky)
+            throw InputError(scene.file, "sky",
+                             fmt::format("the sky is given twice: here and by {}",
+                                         radiance::describe(sources.sky_where)));
+        scene.sky = sources.sky;
+    }
 }
 
 /// Overrides only the keys the scene file gives; a new name defines a new material.
@@ -99,6 +120,10 @@ void apply_materials(Scene& scene, const std::vector<MaterialSpec>& specs) {
             material.two_sided = *spec.two_sided;
         if (spec.emission_two_sided)
             material.emission_two_sided = *spec.emission_two_sided;
+        if (spec.thin_glass) {
+            material.reflectance = Rgb{}; // a pane reflects only specularly
+            material.lobe = *spec.thin_glass;
+        }
     }
 }
 
@@ -291,6 +316,8 @@ void validate_material(const Scene& scene, const Material& m) {
     if (m.emission_flux_lm)
         check(std::isfinite(*m.emission_flux_lm) && *m.emission_flux_lm >= 0, scene,
               key + ".emission_flux_lm", fmt::format("must be >= 0, got {}", *m.emission_flux_lm));
+    check(m.diffuse_transmittance.is_black(), scene, key,
+          "diffuse transmission (Radiance 'trans') is not supported yet (issue #30)");
 }
 
 // The same ranges as the scene file's "spot" (scene_json.cpp), for spots built in code; the
@@ -432,8 +459,10 @@ Scene parse_scene(const std::string& json_text, const std::string& file_name,
                   const std::string& base_dir) {
     SceneSpec spec = parse_scene_json(json_text, file_name);
     Scene scene = std::move(spec.scene);
+    RadianceImport radiance(spec.metres_per_unit);
     for (const std::string& file : spec.geometry)
-        add_geometry_file(scene, base_dir, file, spec.metres_per_unit);
+        add_geometry_file(scene, base_dir, file, spec.metres_per_unit, radiance);
+    add_radiance_sources(scene, radiance.sources());
     apply_materials(scene, spec.materials);
     add_inline_polygons(scene, spec.polygons);
     if (spec.sensor_file) {

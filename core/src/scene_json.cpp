@@ -216,13 +216,67 @@ std::vector<std::string> parse_geometry_list(const Field& root) {
     return files;
 }
 
+/// Transmissivity tn (one crossing of the pane) of thin glass that transmits \p tn_normal at
+/// normal incidence: the root of T = (1 − r)² tn / (1 − r² tn²), r the Fresnel reflectance of
+/// one face. At n = 1.52 this is Radiance's formula (sqrt(.8402528435 + .0072522239 T²) −
+/// .9166530661) / .0036261119 / T, whose constants are (1 − r)⁴, 4r², (1 − r)² and 2r².
+double transmissivity_from_normal(double tn_normal, double ior) {
+    const double r = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
+    const double k = (1 - r) * (1 - r);
+    if (tn_normal == 0)
+        return 0;
+    return (std::sqrt(k * k + 4 * r * r * tn_normal * tn_normal) - k) / (2 * r * r * tn_normal);
+}
+
+// "type": "thin_glass" with "transmissivity" (Radiance's glass input) or
+// "transmittance_normal" (what a glazing's data sheet gives), per channel, and "ior".
+ThinGlass parse_thin_glass(const Field& field) {
+    for (const char* key : {"reflectance", "emission", "emission_flux_lm", "emission_color"})
+        if (field.has(key))
+            field.child(key).fail("a thin_glass material has no diffuse part or emission");
+    ThinGlass glass;
+    if (field.has("ior")) {
+        const Field ior = field.child("ior");
+        glass.ior = ior.number();
+        if (!(glass.ior > 1 && glass.ior <= 10))
+            ior.fail(fmt::format("must be in (1, 10], got {}", glass.ior));
+    }
+    if (field.has("transmissivity") == field.has("transmittance_normal"))
+        field.fail("a thin_glass material takes exactly one of 'transmissivity' and "
+                   "'transmittance_normal'");
+    const bool direct = field.has("transmissivity");
+    const Field value = field.child(direct ? "transmissivity" : "transmittance_normal");
+    const Rgb given = value.rgb();
+    const double most = direct ? 1.0 : thin_glass_response(1.0, glass.ior, 1.0).transmittance;
+    for (int c = 0; c < 3; ++c) {
+        if (!(given[c] >= 0 && given[c] <= most))
+            value.fail(fmt::format("must be in [0, {:.6g}] per channel{}, got ({}, {}, {})", most,
+                                   direct ? "" : " (clear glass of this ior)", given.r, given.g,
+                                   given.b));
+        glass.transmissivity[c] =
+            direct ? given[c] : float(transmissivity_from_normal(given[c], glass.ior));
+    }
+    return glass;
+}
+
 MaterialSpec parse_material(const Field& field, const std::string& name) {
-    field.expect_keys({"reflectance", "emission", "emission_flux_lm", "emission_color", "two_sided",
-                       "emission_two_sided"});
+    field.expect_keys({"type", "reflectance", "emission", "emission_flux_lm", "emission_color",
+                       "two_sided", "emission_two_sided", "transmissivity", "transmittance_normal",
+                       "ior"});
     if (name.empty())
         field.fail("a material name must not be empty");
     MaterialSpec spec;
     spec.name = name;
+    const std::string type = field.has("type") ? field.child("type").string() : "diffuse";
+    if (type != "diffuse" && type != "thin_glass")
+        field.child("type").fail(
+            fmt::format("unknown material type '{}' (known: diffuse, thin_glass)", type));
+    if (type == "thin_glass")
+        spec.thin_glass = parse_thin_glass(field);
+    else
+        for (const char* key : {"transmissivity", "transmittance_normal", "ior"})
+            if (field.has(key))
+                field.child(key).fail("is only used with \"type\": \"thin_glass\"");
     if (field.has("reflectance"))
         spec.reflectance = field.child("reflectance").rgb();
     if (field.has("emission"))

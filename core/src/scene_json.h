@@ -20,6 +20,7 @@ struct MaterialSpec {
     std::optional<Rgb> emission_color; ///< only with emission_flux_lm
     std::optional<bool> two_sided;
     std::optional<bool> emission_two_sided;
+    std::optional<ThinGlass> thin_glass; ///< "type": "thin_glass"
 };
 
 /// \brief A `polygons` entry, vertices already in metres.

@@ -98,6 +98,11 @@ struct Material {
     std::optional<double> emission_flux_lm;
     /// The non-diffuse part; no scene key sets it yet (issue #28).
     std::optional<Lobe> lobe;
+    /// Diffuse transmittance per channel, in [0, 1): the fraction of the light arriving on
+    /// either side that leaves the other side diffusely (Radiance's `trans`: blinds, diffusing
+    /// glass). Not transported yet: the scene loader refuses a material with a non-zero value
+    /// (issue #30).
+    Rgb diffuse_transmittance{};
 };
 
 /// \brief What the radiosity solver transports of a material: its diffuse part, and for

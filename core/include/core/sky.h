@@ -52,8 +52,20 @@ struct PerezSky {
     double brightness = 0.01; ///< Δ, in [0.01, 0.6]
 };
 
+/// \brief Radiance's intermediate sky (skybright.cal type 4, written by gensky -i/+i), which
+///        Radiance calls the CIE intermediate sky; it is none of ISO 15469's 15 general skies.
+///        Its luminance relative to the zenith's is radiance_intermediate_sky(); it depends on
+///        the sun's position.
+struct RadianceIntermediateSky {};
+
 /// \brief The relative luminance distribution of a sky.
-using SkyModel = std::variant<UniformSky, CieOvercastSky, CieGeneralSky, PerezSky>;
+using SkyModel =
+    std::variant<UniformSky, CieOvercastSky, CieGeneralSky, PerezSky, RadianceIntermediateSky>;
+
+/// \brief RadianceIntermediateSky's luminance relative to its zenith's, at zenith angle
+///        \p zenith_angle and angle \p sun_angle from the sun, for the sun at zenith angle
+///        \p sun_zenith_angle (radians; the direction above the horizon).
+double radiance_intermediate_sky(double zenith_angle, double sun_angle, double sun_zenith_angle);
 
 /// \brief How the sky meets the ground.
 enum class Horizon {

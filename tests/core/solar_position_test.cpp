@@ -32,9 +32,12 @@ TEST(SolarPosition, MatchesNoaaSpreadsheetRow) {
     EXPECT_NEAR(angles.azimuth_deg, 1.09867118388445, 1e-4);
 }
 
-TEST(SolarPosition, DeclinationMatchesMeeusExample25a) {
-    // 1992 October 13.0 TD: apparent declination −7.78507° (low-accuracy method, as NOAA's).
-    EXPECT_NEAR(sun_ephemeris(2448908.5).declination_deg, -7.78507, 1e-4);
+TEST(SolarPosition, MatchesMeeusExamples25aAnd28b) {
+    // 1992 October 13.0 TD: apparent declination −7.78507° (example 25.a, the low-accuracy
+    // method, as NOAA's) and Smart's equation of time +13m42.7s (example 28.b).
+    const SunEphemeris sun = sun_ephemeris(2448908.5);
+    EXPECT_NEAR(sun.declination_deg, -7.78507, 1e-4);
+    EXPECT_NEAR(sun.equation_of_time_min, 13 + 42.7 / 60, 0.1 / 60);
 }
 
 TEST(SolarPosition, MatchesNrelSpaExampleWithinTwentiethOfADegree) {

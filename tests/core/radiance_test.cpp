@@ -293,6 +293,22 @@ TEST(Radiance, ModifiersCarryOverToLaterFilesInGeometryOrder) {
                  {"w.rad:1:", "unknown modifier 'wall'"});
 }
 
+TEST(Radiance, ErrorsInIncludedFilesNameThatFile) {
+    const std::string dir = test::temp_dir("radiance-nested");
+    std::ofstream(dir + "/inner.rad") << "\n\nvoid cone c\n0\n0\n8 0 0 0 0 0 1 1 0\n";
+    std::ofstream(dir + "/test.rad") << k_lamp << "!xform -t 1 0 0 inner.rad\n";
+    std::ofstream(dir + "/scene.json") << R"({"geometry": ["test.rad"]})";
+    expect_error(dir + "/scene.json", {"inner.rad:3:", "'c'", "'cone'"});
+}
+
+TEST(Radiance, SunGivenTwiceIsAnError) {
+    const std::string sun = "void light solar\n0\n0\n3 1e6 1e6 1e6\n"
+                            "solar source sun\n0\n0\n4 0 -1 1 0.5\n";
+    expect_error(write_scene({{"test.rad", k_lamp + sun}},
+                             R"(, "sun": {"direction": [0, 0, 1], "illuminance_lx": 1000})"),
+                 {"'sun'", "given twice", "test.rad:14"});
+}
+
 TEST(Radiance, ErrorsNameFileAndLine) {
     expect_rad_error("void sphere ball\n0\n0\n4 0 0 0 1\n", 1,
                      {"'ball'", "'sphere'", "not supported"});

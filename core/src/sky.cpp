@@ -153,7 +153,8 @@ public:
                                   perez_ = perez_coefficients(perez, sun_zenith_);
                                   const double zenith = perez_luminance(perez_, 1.0, sun_zenith_);
                                   scale_ = zenith > 0 ? 1 / zenith : 0.0;
-                              }},
+                              },
+                              [](const RadianceIntermediateSky&) {}},
                    sky.model);
         kind_ = sky.model.index();
     }
@@ -167,8 +168,11 @@ public:
             return std::max(0.0, (1 + 2 * dz) / 3);
         case 2: // CieGeneralSky
             return scale_ * cie_gradation(cie_, dz) * cie_indicatrix(cie_, angle_to_sun(dir));
-        default: // PerezSky
+        case 3: // PerezSky
             return scale_ * perez_luminance(perez_, dz, angle_to_sun(dir));
+        default: // RadianceIntermediateSky
+            return radiance_intermediate_sky(std::acos(std::clamp(dz, -1.0, 1.0)),
+                                             angle_to_sun(dir), sun_zenith_);
         }
     }
 
@@ -185,7 +189,8 @@ private:
     PerezCoefficients perez_{};
 };
 static_assert(std::is_same_v<std::variant_alternative_t<2, SkyModel>, CieGeneralSky> &&
-              std::is_same_v<std::variant_alternative_t<3, SkyModel>, PerezSky>);
+              std::is_same_v<std::variant_alternative_t<3, SkyModel>, PerezSky> &&
+              std::is_same_v<std::variant_alternative_t<4, SkyModel>, RadianceIntermediateSky>);
 
 } // namespace
 

@@ -19,8 +19,11 @@ namespace {
 /// a pane's own T(θ) varies less across a cell.
 constexpr double k_edge_contrast = 0.1;
 /// Samples whose sky luminance differs by more than this ratio split the cell (the horizon,
-/// the circumsolar peak).
+/// the circumsolar peak), down to k_luminance_depth only: jittered samples average a smooth
+/// sky without bias, and a sharp horizon split to the finest cells cost every vertical
+/// surface outdoors thousands of rays.
 constexpr double k_luminance_ratio = 1.5;
+constexpr int k_luminance_depth = 2;
 
 /// A cell of the hemisphere: cell (i, j) of the (side << depth)² grid over the unit square,
 /// which Shirley & Chiu's concentric map takes to the unit disc, area for area, and the disc
@@ -53,13 +56,16 @@ float sky_reach(double diagonal) {
 }
 
 /// Whether the four samples of a cell (transmittances \p t, sky radiances \p l) call for
-/// finer cells: some blocked and some not, panes and open sky mixed, or a steep sky.
-CellSight sight_of(std::span<const float> t, std::span<const Rgb> l) {
+/// finer cells: some blocked and some not, panes and open sky mixed, or a steep sky (at
+/// \p depth below k_luminance_depth).
+CellSight sight_of(std::span<const float> t, std::span<const Rgb> l, int depth) {
     const auto [t_lo, t_hi] = std::minmax_element(t.begin(), t.end());
     if (*t_hi <= 0.0f)
         return CellSight::hidden;
     if (*t_lo <= 0.0f || *t_hi - *t_lo > k_edge_contrast * *t_hi)
         return CellSight::varies;
+    if (depth >= k_luminance_depth)
+        return CellSight::open;
     double lo = 1e300, hi = 0;
     for (const Rgb& c : l) {
         const double y = to_photometric(c);
@@ -133,7 +139,7 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
         visibility.transmittance(rays, t);
         sights.clear();
         for (std::size_t k = 0; k < cells.size(); ++k)
-            sights.push_back(sight_of({t.data() + 4 * k, 4}, {radiance.data() + 4 * k, 4}));
+            sights.push_back(sight_of({t.data() + 4 * k, 4}, {radiance.data() + 4 * k, 4}, depth));
         const LevelSights level(cells, sights, side);
         finer.clear();
         for (std::size_t k = 0; k < cells.size(); ++k) {
@@ -155,27 +161,21 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
     return sum;
 }
 
-SkyIrradiance sky_triangle_irradiance(const Sky& sky, const OrientedTriangle& target, double offset,
-                                      double diagonal, std::uint64_t key,
-                                      const VisibilityQuery& visibility, std::uint64_t seed) {
+Rgb sky_triangle_irradiance(const Sky& sky, const OrientedTriangle& target, double offset,
+                            double diagonal, std::uint64_t key, const VisibilityQuery& visibility,
+                            std::uint64_t seed) {
     constexpr double k_near = 2.0 / 3.0, k_far = 1.0 / 6.0;
+    Pcg32 rng = Pcg32::for_stream(RngPurpose::sky_visibility, key, 0, 0, seed);
     RgbD sum;
-    double lo = 1e300, hi = 0;
     for (int i = 0; i < 3; ++i) {
         const Vec3 p = target.v[std::size_t(i)] * k_near +
                        target.v[std::size_t((i + 1) % 3)] * k_far +
                        target.v[std::size_t((i + 2) % 3)] * k_far + target.n * offset;
-        // The same jitter at the three points, so that their difference is the light's
-        // variation over the triangle, not the samples' noise.
-        Pcg32 rng = Pcg32::for_stream(RngPurpose::sky_visibility, key, 0, 0, seed);
-        const RgbD e = sky_point_irradiance(sky, p, target.n, diagonal, visibility,
-                                            k_sky_element_quadrature, rng);
-        sum += e;
-        lo = std::min(lo, e.max_component());
-        hi = std::max(hi, e.max_component());
+        sum += sky_point_irradiance(sky, p, target.n, diagonal, visibility,
+                                    k_sky_element_quadrature, rng);
     }
     const RgbD mean = sum * (1.0 / 3.0);
-    return {Rgb(float(mean.r), float(mean.g), float(mean.b)), float(hi - lo)};
+    return Rgb(float(mean.r), float(mean.g), float(mean.b));
 }
 
 RgbD shoot_sky(ShootingState& state, const ElementGeometry& geo, const Sky& sky,
@@ -183,8 +183,7 @@ RgbD shoot_sky(ShootingState& state, const ElementGeometry& geo, const Sky& sky,
     std::vector<Rgb> received(geo.size());
     parallel_for_index(geo.size(), 16, [&](std::size_t j) {
         received[j] = sky_triangle_irradiance(sky, geo.oriented(std::uint32_t(j)), geo.offset,
-                                              geo.diagonal, j, visibility, settings.seed)
-                          .irradiance;
+                                              geo.diagonal, j, visibility, settings.seed);
     });
     RgbD delivered;
     for (std::size_t j = 0; j < geo.size(); ++j) {

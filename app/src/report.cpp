@@ -62,8 +62,9 @@ std::string summary_json(const Scene& scene, const BakeResult& result) {
 }
 
 std::string sensors_csv(const Scene& scene, const BakeResult& result) {
-    std::string out = "name,x,y,z,nx,ny,nz,direct_r_w_m2,direct_g_w_m2,direct_b_w_m2,"
-                      "total_r_w_m2,total_g_w_m2,total_b_w_m2,direct_lx,total_lx\n";
+    std::string out =
+        "name,x,y,z,nx,ny,nz,direct_r_w_m2,direct_g_w_m2,direct_b_w_m2,"
+        "total_r_w_m2,total_g_w_m2,total_b_w_m2,illuminance_direct_lx,illuminance_total_lx\n";
     for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
         const Sensor& s = scene.sensors[i];
         const solver::SensorReading& r = result.sensors[i];

@@ -296,6 +296,14 @@ Vec3 SensorGrid::point(double row, double column) const {
     return origin + (column * spacing_m) * u + (row * spacing_m) * v;
 }
 
+bool SensorGrid::covers(double row, double column) const {
+    const auto plane = [&](const Vec3& p) { return Vec2{dot(p, u), dot(p, v)}; };
+    std::vector<Edge2> edges;
+    for (const auto& [a, b] : outline)
+        edges.push_back({plane(a), plane(b)});
+    return inside_even_odd(edges, plane(point(row, column)));
+}
+
 void add_sensor_grids(Scene& scene, const std::vector<GridSpec>& specs) {
     for (const GridSpec& spec : specs)
         add_grid(scene, spec);

@@ -66,6 +66,9 @@ struct SensorGrid {
     std::optional<std::uint32_t> sensor_at(int row, int column) const;
     /// \brief The point at fractional lattice coordinates (\p row, \p column), metres.
     Vec3 point(double row, double column) const;
+    /// \brief Whether the point at fractional lattice coordinates lies inside the outline
+    ///        (even-odd rule), as plans colour it.
+    bool covers(double row, double column) const;
 };
 
 struct Camera {

@@ -7,6 +7,13 @@
 
 namespace penumbra::app {
 
+std::optional<double> daylight_reference_lx(const Scene& scene) {
+    if (!scene.sky)
+        return std::nullopt;
+    const double lx = scene.sky->horizontal_illuminance_lx();
+    return lx > 0 ? std::optional(lx) : std::nullopt;
+}
+
 GridStats stats_of(const std::vector<double>& values) {
     GridStats s;
     s.points = values.size();
@@ -32,8 +39,8 @@ PlanQuantity plan_quantity(std::optional<double> daylight_reference_lx) {
     return {"illuminance", "lx", 1};
 }
 
-std::string grids_csv(const Scene& scene, const BakeResult& result,
-                      std::optional<double> daylight_reference_lx) {
+std::string grids_csv(const Scene& scene, const BakeResult& result) {
+    const std::optional<double> daylight_reference_lx = app::daylight_reference_lx(scene);
     std::string out = "grid,kind,points,illuminance_avg_lx,illuminance_min_lx,"
                       "illuminance_max_lx,uniformity_min_avg";
     out += daylight_reference_lx ? ",daylight_factor_avg_pct,daylight_factor_min_pct\n" : "\n";

@@ -12,6 +12,13 @@
 
 namespace penumbra::app {
 
+/// \brief The daylight factor's reference: the unobstructed horizontal illuminance of the
+///        scene's sky alone (lx, no sun; Sky::horizontal_illuminance_lx). None without a sky
+///        (or with a black one). The ratio describes a room independently of the sky's level
+///        under an overcast sky only: under a clear sky or with a sun it depends on the sun's
+///        position, and the sun's light is not in the reference.
+std::optional<double> daylight_reference_lx(const Scene& scene);
+
 /// \brief Statistics of one grid's values (the arithmetic mean of its points, as EN 12464-1
 ///        and the daylight standards take it on a regular grid).
 struct GridStats {
@@ -38,9 +45,8 @@ struct PlanQuantity {
 PlanQuantity plan_quantity(std::optional<double> daylight_reference_lx);
 
 /// \brief grids.csv text: one row per grid with its kind, point count and illuminance
-///        statistics (lx), and the daylight factor's mean and minimum (%) when
-///        \p daylight_reference_lx is set.
-std::string grids_csv(const Scene& scene, const BakeResult& result,
-                      std::optional<double> daylight_reference_lx);
+///        statistics (lx), and the daylight factor's mean and minimum (%) when the scene has
+///        a sky.
+std::string grids_csv(const Scene& scene, const BakeResult& result);
 
 } // namespace penumbra::app

@@ -68,7 +68,7 @@ void remove_grid_files(const std::string& dir, const std::vector<std::string>& k
 
 void write_grid_files(const OutputTarget& t) {
     remove_grid_files(t.dir, grid_file_names(t));
-    const std::optional<double> reference_lx;
+    const std::optional<double> reference_lx = daylight_reference_lx(t.scene);
     const PlanQuantity quantity = plan_quantity(reference_lx);
     for (const SensorGrid& grid : t.scene.grids) {
         std::vector<double> values = grid_illuminance_lx(grid, t.result.sensors);
@@ -113,7 +113,7 @@ std::vector<OutputWriter> make_bake_writers() {
                      write_text_file(t.path("sensors.csv"), sensors_csv(t.scene, t.result));
                  }});
     w.push_back({"grid statistics", {"grids.csv"}, has_grids, [](const OutputTarget& t) {
-                     write_text_file(t.path("grids.csv"), grids_csv(t.scene, t.result, {}));
+                     write_text_file(t.path("grids.csv"), grids_csv(t.scene, t.result));
                  }});
     w.push_back({"grid plans",
                  {},

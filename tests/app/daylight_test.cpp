@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,6 +19,7 @@
 #include "common/test_util.h"
 #include "core/scene_io.h"
 
+#include "daylight.h"
 #include "grid_plan.h"
 
 namespace penumbra {
@@ -166,6 +168,49 @@ TEST_F(GridOutputs, RebakeRemovesTheFilesOfGridsItNoLongerHas) {
     EXPECT_FALSE(fs::exists(dir_ / "grid_desk.png"));
     EXPECT_FALSE(fs::exists(dir_ / "grids.csv"));
     EXPECT_TRUE(fs::exists(dir_ / "grid_notes.txt"));
+}
+
+// The daylight factor is 100 E / E_h, E_h the sky's unobstructed horizontal illuminance: π L
+// for a uniform sky of luminance L (Radiance's 179 lm/W: L = 179 × the zenith radiance), here
+// 10 000 lx. The readings are set by hand (the sky's light at the points is the solver's); the
+// tolerance, 1e-4, allows for E_h found by quadrature.
+TEST(DaylightFactor, SensorsAndGridsAgainstAUniformSky) {
+    Scene scene = lit_floor();
+    Sky sky;
+    sky.model = UniformSky{};
+    sky.zenith_radiance = 10000 / k_pi / 179;
+    scene.sky = sky;
+    app::BakeResult result;
+    for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
+        const double lx = 100 + 10.0 * double(i);
+        result.sensors.push_back({Rgb(), Rgb(), lx, lx});
+    }
+    std::stringstream sensors(app::sensors_csv(scene, result));
+    std::string line;
+    std::getline(sensors, line);
+    EXPECT_TRUE(line.ends_with(",illuminance_direct_lx,illuminance_total_lx,daylight_factor_pct"))
+        << line;
+    for (std::size_t i = 0; std::getline(sensors, line); ++i) {
+        const double df = std::stod(line.substr(line.rfind(',') + 1));
+        const double expected = (100 + 10.0 * double(i)) / 100;
+        EXPECT_NEAR(df, expected, 1e-4 * expected) << line;
+    }
+    // The grid's points are sensors 1 … 77: E from 110 to 870 lx, mean 490 lx.
+    std::stringstream grids(app::grids_csv(scene, result));
+    std::getline(grids, line);
+    EXPECT_TRUE(
+        line.ends_with(",uniformity_min_avg,daylight_factor_avg_pct,daylight_factor_min_pct"))
+        << line;
+    std::getline(grids, line);
+    double avg = 0, min = 0, max = 0, uniformity = 0, df_avg = 0, df_min = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "wp,work_plane,77,%lf,%lf,%lf,%lf,%lf,%lf", &avg, &min,
+                          &max, &uniformity, &df_avg, &df_min),
+              6)
+        << line;
+    EXPECT_DOUBLE_EQ(avg, 490);
+    EXPECT_NEAR(df_avg, 4.9, 1e-4 * 4.9);
+    EXPECT_NEAR(df_min, 1.1, 1e-4 * 1.1);
+    EXPECT_EQ(app::plan_quantity(app::daylight_reference_lx(scene)).unit, "%");
 }
 
 } // namespace

@@ -1,3 +1,7 @@
+// A grid's plan: each pixel inside the outline takes the bilinear value of the lattice at its
+// centre, the lattice's absent points filled from their nearest present ones (breadth-first);
+// iso-lines are the pixels whose band of the colour scale differs from a neighbour's.
+
 #include "grid_plan.h"
 
 #include <algorithm>
@@ -26,13 +30,17 @@ std::string label(double value) {
     return fmt::format("{:.{}f}", value, a >= 10 ? 1 : (a >= 1 ? 2 : 3));
 }
 
-/// A multiple of \p step as a tick label, with the decimals the step needs (2.5: one).
-std::string tick_label(double value, double step) {
+/// A level as a tick label, with the decimals the levels need (a step of 2.5: one; 0.5 %: one).
+std::string level_label(double level, const ColourScale& scale) {
     int decimals = 0;
-    for (double scaled = step;
-         decimals < 6 && std::abs(scaled - std::round(scaled)) > 1e-6 * scaled; scaled *= 10)
-        ++decimals;
-    return fmt::format("{:.{}f}", value, decimals);
+    const auto whole = [&](double v) {
+        const double scaled = v * std::pow(10.0, decimals);
+        return std::abs(scaled - std::round(scaled)) <= 1e-6 * std::max(1.0, std::abs(scaled));
+    };
+    for (double v : scale.levels)
+        while (decimals < 6 && !whole(v))
+            ++decimals;
+    return fmt::format("{:.{}f}", level, decimals);
 }
 
 /// The lattice with each absent point given the value of its nearest present one (by steps
@@ -132,20 +140,19 @@ void draw_outline_and_points(Canvas& canvas, const PlanLayout& layout, const Sen
             }
 }
 
-/// The colour bar from 0 (bottom) to the scale's top, a tick and a number at every step.
+/// The colour bar from the scale's bottom to its top, a tick and a number at every level.
 void draw_legend(Canvas& canvas, const PlanLayout& layout, const ColourScale& scale) {
     const int x = layout.bar_x, top = layout.bar_y, height = layout.bar_height;
-    for (int i = 0; i < height; ++i) {
-        const double value = scale.top * (height - i - 0.5) / height;
-        canvas.fill(x, top + i, x + PlanLayout::k_bar_width, top + i + 1, scale.colour(value));
-    }
+    for (int i = 0; i < height; ++i)
+        canvas.fill(x, top + i, x + PlanLayout::k_bar_width, top + i + 1,
+                    viridis((height - i - 0.5) / height));
     const int text_height = Canvas::text_height(k_text_scale);
-    for (int k = 0; k <= scale.steps(); ++k) {
-        const int y = top + height - int(std::lround(double(k) / scale.steps() * height));
-        const int tick_x = x + PlanLayout::k_bar_width;
+    const int tick_x = x + PlanLayout::k_bar_width;
+    for (double level : scale.levels) {
+        const int y = top + height - int(std::lround(scale.fraction(level) * height));
         canvas.fill(tick_x, y - 1, tick_x + 6, y + 1, k_ink);
-        canvas.text(tick_x + 10, y - text_height / 2, tick_label(k * scale.step, scale.step),
-                    k_text_scale, k_ink);
+        canvas.text(tick_x + 10, y - text_height / 2, level_label(level, scale), k_text_scale,
+                    k_ink);
     }
 }
 
@@ -205,7 +212,8 @@ std::pair<double, double> PlanLayout::pixel_at(const SensorGrid& grid, double ro
 Canvas draw_grid_plan(const SensorGrid& grid, const std::vector<double>& values,
                       const PlanQuantity& quantity) {
     const PlanLayout layout = PlanLayout::of(grid);
-    const ColourScale scale = ColourScale::covering(stats_of(values).max);
+    const GridStats stats = stats_of(values);
+    const ColourScale scale = ColourScale::covering(stats.min, stats.max);
     Canvas canvas(layout.width, layout.height, k_white);
     paint_field(canvas, layout, grid, filled_lattice(grid, values), scale);
     draw_outline_and_points(canvas, layout, grid);

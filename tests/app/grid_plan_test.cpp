@@ -35,12 +35,14 @@ TEST(ColourMap, LightnessRisesThroughout) {
     EXPECT_GT(luma(viridis(1)) - luma(viridis(0)), 180);
 }
 
-TEST(ColourScale, RoundStepsUpToARoundTop) {
+TEST(ColourScale, LinearRoundStepsUpToARoundTop) {
     const auto check = [](double max, double step, double top) {
-        const ColourScale s = ColourScale::covering(max);
-        EXPECT_DOUBLE_EQ(s.step, step) << max;
-        EXPECT_DOUBLE_EQ(s.top, top) << max;
-        EXPECT_LE(s.steps(), 8) << max;
+        const ColourScale s = ColourScale::covering(0, max);
+        EXPECT_FALSE(s.logarithmic);
+        EXPECT_DOUBLE_EQ(s.bottom(), 0) << max;
+        EXPECT_DOUBLE_EQ(s.levels[1], step) << max;
+        EXPECT_DOUBLE_EQ(s.top(), top) << max;
+        EXPECT_LE(s.levels.size(), 9u) << max;
     };
     check(369, 50, 400);
     check(400, 50, 400); // a maximum on a step adds none
@@ -48,11 +50,28 @@ TEST(ColourScale, RoundStepsUpToARoundTop) {
     check(1, 0.2, 1);
     check(2.3, 0.5, 2.5);
     check(17, 2.5, 17.5);
-    check(0, 1, 1); // all dark
-    const ColourScale s = ColourScale::covering(369);
+    check(0, 1, 1);                                       // all dark
+    const ColourScale s = ColourScale::covering(40, 369); // within a decade: linear from 0
+    EXPECT_FALSE(s.logarithmic);
     EXPECT_EQ(s.band(49.9), 0);
     EXPECT_EQ(s.band(50.1), 1);
     EXPECT_DOUBLE_EQ(s.fraction(200), 0.5);
+}
+
+// More than a decade: 1-2-5 levels around the values, positions by the logarithm.
+TEST(ColourScale, LogarithmicOverMoreThanADecade) {
+    const ColourScale s = ColourScale::covering(0.73, 18.9);
+    EXPECT_TRUE(s.logarithmic);
+    EXPECT_EQ(s.levels, (std::vector<double>{0.5, 1, 2, 5, 10, 20}));
+    EXPECT_NEAR(s.fraction(1), std::log(2) / std::log(40), 1e-12);
+    EXPECT_NEAR(s.fraction(std::sqrt(10.0)), std::log(2 * std::sqrt(10.0)) / std::log(40), 1e-12);
+    EXPECT_EQ(s.band(0.9), 0);
+    EXPECT_EQ(s.band(1), 1);
+    EXPECT_EQ(s.band(19), 4);
+    EXPECT_EQ(ColourScale::covering(2, 50).levels, (std::vector<double>{2, 5, 10, 20, 50}));
+    // Past three decades, decades only.
+    EXPECT_EQ(ColourScale::covering(0.3, 4000).levels,
+              (std::vector<double>{0.1, 1, 10, 100, 1000, 10000}));
 }
 
 /// A 4 m × 6 m floor grid at spacing 0.5, 0.5 m from the walls (7 × 11 points, all present).
@@ -106,7 +125,7 @@ protected:
 TEST_F(LinearPlan, ColoursFollowTheInterpolatedValues) {
     ASSERT_EQ(canvas_.width(), layout_.width);
     ASSERT_EQ(canvas_.height(), layout_.height);
-    const ColourScale scale = ColourScale::covering(360);
+    const ColourScale scale = ColourScale::covering(0, 360);
     // Half-way between two points of row 5 the value is 60 × (c + 0.5), away from iso-lines.
     for (int c = 0; c + 1 < grid_.columns; ++c) {
         const auto [x, y] = layout_.pixel_at(grid_, 5.25, c + 0.5);

@@ -24,6 +24,7 @@ PACKAGES=(
     libcli11-dev
     libspdlog-dev libfmt-dev
     libpng-dev
+    libstb-dev
     libgtest-dev libgmock-dev
     libbenchmark-dev
     xvfb xauth

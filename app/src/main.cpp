@@ -92,8 +92,8 @@ void add_common_flags(CLI::App& cmd, CommonFlags& flags) {
     cmd.add_flag("-v,--verbose", flags.verbose, "debug messages");
 }
 
-int run_bake(const BakeFlags& flags, const CommonFlags& common) {
-    Context ctx = make_context(common);
+/// The scene with the solver and mesher flags of bake and daylight applied.
+Scene load_with_overrides(const BakeFlags& flags) {
     Scene scene = load_scene(flags.scene);
     if (flags.max_edge_m > 0)
         scene.mesher.max_edge_length = flags.max_edge_m;
@@ -109,6 +109,54 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
         scene.solver.clustering = *parse_enum<Clustering>(flags.clustering);
     if (!flags.iteration.empty())
         scene.solver.iteration = *parse_enum<SolverIteration>(flags.iteration);
+    return scene;
+}
+
+void log_power_balance(const Context& ctx, const std::string& output,
+                       const app::BakeResult& result) {
+    const auto& pb = result.stats.power;
+    ctx.info("wrote {}: {} elements, {} rays, emitted {:.4g} lm, absorbed {:.4g} lm, escaped "
+             "{:.4g} lm, unshot {:.4g} lm",
+             output, result.mesh.element_count(), result.rays, to_photometric(pb.emitted),
+             to_photometric(pb.absorbed), to_photometric(pb.escaped), to_photometric(pb.residual));
+}
+
+/// The scene, the output folder and the flags that override the scene's solver settings: the
+/// same for bake and daylight.
+void add_solve_flags(CLI::App& cmd, BakeFlags& flags) {
+    cmd.add_option("scene", flags.scene, "scene file (JSON, docs/scene-format.md)")->required();
+    cmd.add_option("-o,--output", flags.output, "output folder (created if missing)");
+    cmd.add_option(
+           "--max-edge", flags.max_edge_m,
+           "element size in metres: edges up to √2 × this (overrides mesher.max_edge_length)")
+        ->check(app::positive_number());
+    cmd.add_option("--residual", flags.residual,
+                   "stop when unshot power / emitted power falls below this")
+        ->check(app::number_in(1e-12, 0.999999));
+    cmd.add_option("--method", flags.method, "solver method (overrides solver.method)")
+        ->check(CLI::IsMember(enum_names<SolverMethod>()));
+    cmd.add_option("--epsilon", flags.epsilon,
+                   "hierarchical: refinement threshold, relative to the brightest source's "
+                   "exitance (overrides solver.epsilon)")
+        ->check(app::number_in(1e-12, 1.0));
+    cmd.add_option("--min-area", flags.min_area_m2,
+                   "hierarchical: smallest element area in m² (overrides solver.min_area)")
+        ->check(app::positive_number());
+    cmd.add_option("--clustering", flags.clustering,
+                   "hierarchical: start from a cluster tree (on), from all pairs of mesh "
+                   "elements (off), or cluster above 3 000 elements (auto; overrides "
+                   "solver.clustering)")
+        ->check(CLI::IsMember(enum_names<Clustering>()));
+    cmd.add_option("--iteration", flags.iteration,
+                   "hierarchical: how each solve between refinements iterates: jacobi, "
+                   "gauss_seidel (blocks of 32 roots) or shooting (progressive, on the "
+                   "hierarchy; overrides solver.iteration)")
+        ->check(CLI::IsMember(enum_names<SolverIteration>()));
+}
+
+int run_bake(const BakeFlags& flags, const CommonFlags& common) {
+    Context ctx = make_context(common);
+    Scene scene = load_with_overrides(flags);
     check_output_dir(flags.output);
     std::shared_ptr<const solver::HierarchicalState> previous;
     if (!flags.reuse.empty()) {
@@ -128,11 +176,25 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
     options.keep_state = !flags.no_state;
     app::BakeResult result = app::bake(scene, options, ctx);
     app::write_outputs(flags.output, scene, result, !flags.no_state);
-    const auto& pb = result.stats.power;
-    ctx.info("wrote {}: {} elements, {} rays, emitted {:.4g} lm, absorbed {:.4g} lm, escaped "
-             "{:.4g} lm, unshot {:.4g} lm",
-             flags.output, result.mesh.element_count(), result.rays, to_photometric(pb.emitted),
-             to_photometric(pb.absorbed), to_photometric(pb.escaped), to_photometric(pb.residual));
+    log_power_balance(ctx, flags.output, result);
+    return k_ok;
+}
+
+// The bake pipeline without render, solver state or series: mesh.vtu, the sensors and grids.
+int run_daylight(const BakeFlags& flags, const CommonFlags& common) {
+    Context ctx = make_context(common);
+    Scene scene = load_with_overrides(flags);
+    if (!scene.sky && !scene.sun)
+        throw InputError(flags.scene, "",
+                         "the scene has no sky or sun, which `penumbra daylight` needs (use "
+                         "`penumbra bake` for a scene lit by lamps)");
+    check_output_dir(flags.output);
+    app::BakeOptions options;
+    options.render = false;
+    options.keep_state = false;
+    app::BakeResult result = app::bake(scene, options, ctx);
+    app::write_outputs(flags.output, scene, result, false);
+    log_power_balance(ctx, flags.output, result);
     return k_ok;
 }
 
@@ -166,42 +228,8 @@ int main(int argc, char** argv) {
     CommonFlags common;
     BakeFlags bake;
     auto* bake_cmd = cli.add_subcommand("bake", "mesh, solve and write every output of a scene");
-    bake_cmd->add_option("scene", bake.scene, "scene file (JSON, docs/scene-format.md)")
-        ->required();
-    bake_cmd->add_option("-o,--output", bake.output, "output folder (created if missing)");
-    bake_cmd
-        ->add_option(
-            "--max-edge", bake.max_edge_m,
-            "element size in metres: edges up to √2 × this (overrides mesher.max_edge_length)")
-        ->check(app::positive_number());
-    bake_cmd
-        ->add_option("--residual", bake.residual,
-                     "stop when unshot power / emitted power falls below this")
-        ->check(app::number_in(1e-12, 0.999999));
+    add_solve_flags(*bake_cmd, bake);
     bake_cmd->add_flag("--no-render", bake.no_render, "skip the camera render");
-    bake_cmd->add_option("--method", bake.method, "solver method (overrides solver.method)")
-        ->check(CLI::IsMember(enum_names<SolverMethod>()));
-    bake_cmd
-        ->add_option("--epsilon", bake.epsilon,
-                     "hierarchical: refinement threshold, relative to the brightest source's "
-                     "exitance (overrides solver.epsilon)")
-        ->check(app::number_in(1e-12, 1.0));
-    bake_cmd
-        ->add_option("--min-area", bake.min_area_m2,
-                     "hierarchical: smallest element area in m² (overrides solver.min_area)")
-        ->check(app::positive_number());
-    bake_cmd
-        ->add_option("--clustering", bake.clustering,
-                     "hierarchical: start from a cluster tree (on), from all pairs of mesh "
-                     "elements (off), or cluster above 3 000 elements (auto; overrides "
-                     "solver.clustering)")
-        ->check(CLI::IsMember(enum_names<Clustering>()));
-    bake_cmd
-        ->add_option("--iteration", bake.iteration,
-                     "hierarchical: how each solve between refinements iterates: jacobi, "
-                     "gauss_seidel (blocks of 32 roots) or shooting (progressive, on the "
-                     "hierarchy; overrides solver.iteration)")
-        ->check(CLI::IsMember(enum_names<SolverIteration>()));
     bake_cmd->add_option("--reuse", bake.reuse,
                          "hierarchical: re-solve from an earlier bake's folder (or its "
                          "solver_state.bin): same geometry, new reflectances or emissions; keeps "
@@ -215,6 +243,12 @@ int main(int argc, char** argv) {
                      "write the solution every K shots as series/mesh_*.vtu + series.pvd")
         ->check(app::positive_number());
     add_common_flags(*bake_cmd, common);
+    BakeFlags daylight;
+    auto* daylight_cmd = cli.add_subcommand(
+        "daylight", "mesh, solve and write the daylight results of a scene with a sky or sun: "
+                    "sensors.csv, the grids' statistics, plans and points, mesh.vtu");
+    add_solve_flags(*daylight_cmd, daylight);
+    add_common_flags(*daylight_cmd, common);
     std::string validate_scene_path;
     auto* validate_cmd = cli.add_subcommand("validate", "load and check a scene, write nothing");
     validate_cmd->add_option("scene", validate_scene_path, "scene file")->required();
@@ -251,6 +285,8 @@ int main(int argc, char** argv) {
     try {
         if (*bake_cmd)
             return run_bake(bake, common);
+        if (*daylight_cmd)
+            return run_daylight(daylight, common);
         if (*view_cmd)
             return run_view(view, common);
         return run_validate(validate_scene_path, common);

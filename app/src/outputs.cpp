@@ -1,10 +1,15 @@
 #include "outputs.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <optional>
 
 #include "core/files.h"
 #include "core/image.h"
 #include "viewer/vtk_output.h"
+
+#include "daylight.h"
+#include "grid_plan.h"
 
 namespace penumbra::app {
 
@@ -31,6 +36,49 @@ void write_render(const OutputTarget& t) {
     const double exposure =
         t.scene.camera->exposure > 0 ? t.scene.camera->exposure : auto_exposure(image);
     write_png(t.path("render.png"), image, exposure);
+}
+
+bool has_grids(const OutputTarget& t) {
+    return !t.scene.grids.empty();
+}
+
+/// grid_NAME.png and grid_NAME.vtp of every grid.
+std::vector<std::string> grid_file_names(const OutputTarget& t) {
+    std::vector<std::string> names;
+    for (const SensorGrid& grid : t.scene.grids)
+        for (const char* extension : {".png", ".vtp"})
+            names.push_back("grid_" + grid.name + extension);
+    return names;
+}
+
+/// Removes the grid_*.png and grid_*.vtp files of the output folder not in \p keep: those of
+/// grids an earlier bake had.
+void remove_grid_files(const std::string& dir, const std::vector<std::string>& keep) {
+    std::error_code ec;
+    std::vector<fs::path> stale;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        const std::string extension = it->path().extension().string();
+        if (name.starts_with("grid_") && (extension == ".png" || extension == ".vtp") &&
+            it->is_regular_file(ec) && std::find(keep.begin(), keep.end(), name) == keep.end())
+            stale.push_back(it->path());
+    }
+    for (const fs::path& path : stale)
+        fs::remove(path, ec);
+}
+
+void write_grid_files(const OutputTarget& t) {
+    remove_grid_files(t.dir, grid_file_names(t));
+    const std::optional<double> reference_lx = daylight_reference_lx(t.scene);
+    const PlanQuantity quantity = plan_quantity(reference_lx);
+    for (const SensorGrid& grid : t.scene.grids) {
+        std::vector<double> values = grid_illuminance_lx(grid, t.result.sensors);
+        for (double& value : values)
+            value *= quantity.per_lx;
+        draw_grid_plan(grid, values, quantity).write_png(t.path("grid_" + grid.name + ".png"));
+        viewer::write_grid_vtp(t.path("grid_" + grid.name + ".vtp"), t.scene, grid,
+                               t.result.sensors, reference_lx);
+    }
 }
 
 std::vector<OutputWriter> make_bake_writers() {
@@ -65,6 +113,15 @@ std::vector<OutputWriter> make_bake_writers() {
     w.push_back({"sensor values", {"sensors.csv"}, has_sensors, [](const OutputTarget& t) {
                      write_text_file(t.path("sensors.csv"), sensors_csv(t.scene, t.result));
                  }});
+    w.push_back({"grid statistics", {"grids.csv"}, has_grids, [](const OutputTarget& t) {
+                     write_text_file(t.path("grids.csv"), grids_csv(t.scene, t.result));
+                 }});
+    w.push_back({"grid plans",
+                 {},
+                 has_grids,
+                 write_grid_files,
+                 [](const OutputTarget& t) { remove_grid_files(t.dir, {}); },
+                 grid_file_names});
     w.push_back({"solver state",
                  {k_solver_state_file},
                  [](const OutputTarget& t) { return t.result.solver_state && t.save_state; },

@@ -24,15 +24,17 @@ struct OutputTarget {
     std::string path(const std::string& name) const;
 };
 
-/// \brief One output of a bake. \p files are the names it owns inside the output folder;
-///        when \p wanted is false they are removed instead of written (by \p remove when
-///        set, else file by file).
+/// \brief One output of a bake. \p files are the names it owns inside the output folder, and
+///        \p scene_files, when set, the names that depend on the scene (one per grid); when
+///        \p wanted is false they are removed instead of written (by \p remove when set, else
+///        file by file).
 struct OutputWriter {
     std::string name;
     std::vector<std::string> files;
     std::function<bool(const OutputTarget&)> wanted;
     std::function<void(const OutputTarget&)> write;
     std::function<void(const OutputTarget&)> remove = {};
+    std::function<std::vector<std::string>(const OutputTarget&)> scene_files = {};
 };
 
 /// \brief The writers of `penumbra bake`, in the order they write.

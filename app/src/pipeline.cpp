@@ -97,8 +97,12 @@ void write_outputs(const std::string& dir, const Scene& scene, const BakeResult&
     const OutputTarget target{scene, result, dir, save_state};
     // Temporary files of a bake that was killed before it could remove them.
     std::vector<std::string> names;
-    for (const OutputWriter& writer : bake_writers())
+    for (const OutputWriter& writer : bake_writers()) {
         names.insert(names.end(), writer.files.begin(), writer.files.end());
+        if (writer.scene_files)
+            for (const std::string& name : writer.scene_files(target))
+                names.push_back(name);
+    }
     remove_stale_temp_files(dir, names);
     // Files of an earlier bake that this one does not write would mix two bakes in the viewer.
     for (const OutputWriter& writer : bake_writers()) {

@@ -1,4 +1,5 @@
-// Text outputs of a bake: summary.json and sensors.csv.
+// Text outputs of a bake: summary.json and sensors.csv (with the daylight factor when the
+// scene has a sky).
 
 #include <cmath>
 #include <string>
@@ -7,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/pipeline.h"
+
+#include "daylight.h"
 
 namespace penumbra::app {
 
@@ -67,18 +70,23 @@ std::string summary_json(const Scene& scene, const BakeResult& result) {
 }
 
 std::string sensors_csv(const Scene& scene, const BakeResult& result) {
-    std::string out = "name,x,y,z,nx,ny,nz,direct_r_w_m2,direct_g_w_m2,direct_b_w_m2,"
-                      "total_r_w_m2,total_g_w_m2,total_b_w_m2,direct_lx,total_lx\n";
+    const std::optional<double> reference_lx = daylight_reference_lx(scene);
+    std::string out =
+        "name,x,y,z,nx,ny,nz,direct_r_w_m2,direct_g_w_m2,direct_b_w_m2,"
+        "total_r_w_m2,total_g_w_m2,total_b_w_m2,illuminance_direct_lx,illuminance_total_lx";
+    out += reference_lx ? ",daylight_factor_pct\n" : "\n";
     for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
         const Sensor& s = scene.sensors[i];
         const solver::SensorReading& r = result.sensors[i];
         out += fmt::format("{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},"
-                           "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
+                           "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}",
                            s.name.empty() ? fmt::format("s{}", i) : s.name, s.position.x,
                            s.position.y, s.position.z, s.normal.x, s.normal.y, s.normal.z,
                            r.irradiance_direct.r, r.irradiance_direct.g, r.irradiance_direct.b,
                            r.irradiance_total.r, r.irradiance_total.g, r.irradiance_total.b,
                            r.illuminance_direct_lx, r.illuminance_total_lx);
+        out += reference_lx ? fmt::format(",{:.6g}\n", 100 * r.illuminance_total_lx / *reference_lx)
+                            : "\n";
     }
     return out;
 }

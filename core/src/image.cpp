@@ -112,14 +112,21 @@ void write_png(const std::string& path, const Image& image, double exposure) {
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c)
             bytes[3 * i + std::size_t(c)] = encode_srgb(image.pixels[i][c] * exposure);
+    write_png_rgb8(path, image.width, image.height, bytes);
+}
 
+void write_png_rgb8(const std::string& path, int width, int height,
+                    const std::vector<std::uint8_t>& rgb) {
+    if (width <= 0 || height <= 0 || rgb.size() != 3 * std::size_t(width) * std::size_t(height))
+        throw InternalError(fmt::format("write_png_rgb8('{}'): {} bytes for {}x{} pixels", path,
+                                        rgb.size(), width, height));
     write_atomically(path, [&](const std::string& temp) {
         png_image png{};
         png.version = PNG_IMAGE_VERSION;
-        png.width = png_uint_32(image.width);
-        png.height = png_uint_32(image.height);
+        png.width = png_uint_32(width);
+        png.height = png_uint_32(height);
         png.format = PNG_FORMAT_RGB;
-        const bool ok = png_image_write_to_file(&png, temp.c_str(), 0, bytes.data(), 0, nullptr);
+        const bool ok = png_image_write_to_file(&png, temp.c_str(), 0, rgb.data(), 0, nullptr);
         const std::string message = png.message;
         png_image_free(&png);
         if (!ok)

@@ -25,6 +25,7 @@
 #include "radiance/radiance_import.h"
 #include "radiance/scene_builder.h"
 #include "scene_json.h"
+#include "sensor_grids.h"
 
 namespace penumbra {
 
@@ -471,6 +472,9 @@ Scene parse_scene(const std::string& json_text, const std::string& file_name,
         scene.sensors.insert(scene.sensors.end(), sensors.begin(), sensors.end());
     }
     validate_scene(scene);
+    // Grids lie on validated polygons, so their points are finite.
+    add_sensor_grids(scene, spec.grids);
+    validate_sensor_grids(scene);
     return scene;
 }
 
@@ -480,6 +484,7 @@ void validate_scene(Scene& scene) {
     for (const Material& material : scene.materials)
         validate_material(scene, material);
     validate_lights_and_sensors(scene);
+    validate_sensor_grids(scene);
     if (scene.camera)
         validate_camera(scene, *scene.camera);
     validate_settings(scene);

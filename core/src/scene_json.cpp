@@ -11,6 +11,7 @@
 #include <set>
 #include <string_view>
 #include <utility>
+#include <variant>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -701,6 +702,65 @@ void parse_sensors(const Field& field, double metres_per_unit, SceneSpec& spec) 
         spec.scene.sensors.push_back(parse_sensor(field.element(i), metres_per_unit));
 }
 
+/// A length of the scene file in metres: a finite number >= 0 (> 0 when \p positive).
+double length_m(const Field& field, double metres_per_unit, bool positive) {
+    const double value = field.number();
+    if (positive ? !(value > 0) : !(value >= 0))
+        field.fail(fmt::format("must be {} 0, got {}", positive ? ">" : ">=", value));
+    return value * metres_per_unit;
+}
+
+/// A grid's `floor` or `wall`: the name of the scene's polygons, or inline vertices.
+std::variant<std::string, std::vector<Vec3>> parse_grid_polygon(const Field& field,
+                                                                double metres_per_unit) {
+    if (field.is_object())
+        field.fail("expected a polygon name or an array of [x, y, z] vertices, got an object");
+    if (!field.is_array())
+        return field.string();
+    const std::size_t count = field.array_size();
+    if (count < 3)
+        field.fail(fmt::format("expected at least 3 vertices, got {}", count));
+    std::vector<Vec3> vertices;
+    for (std::size_t i = 0; i < count; ++i)
+        vertices.push_back(field.element(i).vec3() * metres_per_unit);
+    return vertices;
+}
+
+// "grids": {"NAME": {"floor": POLYGON, "height": h, "spacing": s, "wall_offset": w}} for a
+// work plane, or {"wall": POLYGON, "distance": d, "spacing": s, "wall_offset": w} for points
+// on a wall; POLYGON is a polygon name or [[x, y, z], ...]. Expanded by sensor_grids.cpp.
+GridSpec parse_grid(const Field& field, const std::string& name, double metres_per_unit,
+                    const Vec3& up) {
+    field.expect_keys({"floor", "wall", "height", "distance", "spacing", "wall_offset"});
+    const bool floor = field.has("floor");
+    if (floor == field.has("wall"))
+        field.fail("give exactly one of 'floor' (a work plane) and 'wall' (points on a wall)");
+    const char* other = floor ? "distance" : "height";
+    if (field.has(other))
+        field.child(other).fail(fmt::format("is only used with '{}'", floor ? "wall" : "floor"));
+    GridSpec spec;
+    spec.key = field.path();
+    spec.name = name;
+    spec.kind = floor ? GridKind::work_plane : GridKind::wall;
+    spec.up = up;
+    spec.polygon = parse_grid_polygon(field.child(floor ? "floor" : "wall"), metres_per_unit);
+    if (floor)
+        spec.offset_m = length_m(field.required("height"), metres_per_unit, false);
+    else if (field.has("distance"))
+        spec.offset_m = length_m(field.child("distance"), metres_per_unit, false);
+    spec.spacing_m = length_m(field.required("spacing"), metres_per_unit, true);
+    if (field.has("wall_offset"))
+        spec.wall_offset_m = length_m(field.child("wall_offset"), metres_per_unit, false);
+    return spec;
+}
+
+void parse_grids(const Field& root, const Vec3& up, SceneSpec& spec) {
+    if (!root.has("grids"))
+        return;
+    for (const auto& [name, field] : root.child("grids").members())
+        spec.grids.push_back(parse_grid(field, name, spec.metres_per_unit, up));
+}
+
 Camera parse_camera(const Field& field, double metres_per_unit, const Vec3& scene_up) {
     field.expect_keys({"type", "eye", "look_at", "up", "fov_deg", "fov_axis"});
     if (field.has("type")) {
@@ -865,7 +925,8 @@ SceneSpec parse_scene_json(const std::string& text, const std::string& file_name
     const Json json = parse_json(text, file_name);
     const Field root(json, "", file_name);
     root.expect_keys({"name", "units", "up", "geometry", "polygons", "materials", "point_lights",
-                      "sun", "site", "sky", "sensors", "camera", "image", "mesher", "solver"});
+                      "sun", "site", "sky", "sensors", "grids", "camera", "image", "mesher",
+                      "solver"});
     SceneSpec spec;
     spec.scene.file = file_name;
     if (root.has("name"))
@@ -874,6 +935,7 @@ SceneSpec parse_scene_json(const std::string& text, const std::string& file_name
     const Vec3 up = parse_up(root);
     parse_surfaces(root, spec);
     parse_settings(root, up, spec);
+    parse_grids(root, up, spec);
     return spec;
 }
 

@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/scene.h"
@@ -31,6 +32,21 @@ struct PolygonSpec {
     std::vector<Vec3> vertices;
 };
 
+/// \brief A `grids` entry: its polygon is looked up once the geometry files are read.
+struct GridSpec {
+    std::string key; ///< "grids.workplane", for messages
+    std::string name;
+    GridKind kind = GridKind::work_plane;
+    /// The name of the scene's polygon(s) (`floor` or `wall` as a string), or inline vertices
+    /// in metres.
+    std::variant<std::string, std::vector<Vec3>> polygon;
+    /// Metres: work plane, `height` above the floor along `up`; wall, `distance` in front.
+    double offset_m = 0;
+    double spacing_m = 0;
+    double wall_offset_m = 0;
+    Vec3 up{0, 0, 1}; ///< the scene's `up`, unit
+};
+
 /// \brief Everything the scene file says, before its files are read.
 struct SceneSpec {
     /// name, file, point_lights, sun, inline sensors, camera, mesher and solver are final.
@@ -40,6 +56,7 @@ struct SceneSpec {
     std::optional<std::string> sensor_file; ///< `sensors.file`, as written
     std::vector<MaterialSpec> materials;
     std::vector<PolygonSpec> polygons;
+    std::vector<GridSpec> grids;
 };
 
 /// \brief Parses and type-checks the text of a scene file. Throws InputError naming

@@ -449,5 +449,65 @@ TEST(CliOutputs, BakeRemovesStaleTemporaryFiles) {
     EXPECT_TRUE(fs::exists(other)); // not one of our outputs
 }
 
+// `daylight` needs a sky or a sun: a scene lit by a lamp only is one line naming the scene.
+TEST_F(CliBadInput, DaylightWithoutSkyOrSun) {
+    write(dir_ / "lamp.json", good_scene());
+    const fs::path out = dir_ / "out";
+    const RunResult r =
+        run_cli("daylight " + (dir_ / "lamp.json").string() + " -o " + out.string() + " -q");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("lamp.json"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("no sky or sun"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+// A sun of 10 000 lx normal illuminance at 53.13° altitude over a black floor: every point of
+// the work plane receives E_n cos θ = 8 000 lx. `daylight` writes the grid's results and the
+// mesh, no render and no solver state; a killed run's temporary grid file is removed.
+TEST(CliDaylight, SunlitWorkPlane) {
+    const fs::path dir = test::temp_dir("cli-daylight");
+    write(dir / "sun.json", R"({
+  "materials": {"black": {"reflectance": 0}},
+  "polygons": [{"name": "floor", "material": "black",
+                "vertices": [[0,0,0],[4,0,0],[4,6,0],[0,6,0]]}],
+  "sun": {"direction": [0, -0.6, 0.8], "illuminance_lx": 10000},
+  "grids": {"wp": {"floor": "floor", "height": 0.85, "spacing": 0.5, "wall_offset": 0.5}},
+  "camera": {"eye": [2, -3, 2], "look_at": [2, 3, 0]},
+  "mesher": {"max_edge_length": 1},
+  "solver": {"method": "shooting"}
+})");
+    const fs::path out = dir / "out";
+    fs::create_directories(out);
+    const pid_t dead = ::fork();
+    if (dead == 0)
+        ::_exit(0);
+    ::waitpid(dead, nullptr, 0);
+    const fs::path stale = out / (".grid_wp.png.tmp" + std::to_string(dead));
+    write(stale, "partial");
+    const RunResult r =
+        run_cli("daylight " + (dir / "sun.json").string() + " -o " + out.string() + " -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* f :
+         {"mesh.vtu", "sensors.csv", "grids.csv", "grid_wp.png", "grid_wp.vtp", "summary.json"})
+        EXPECT_TRUE(fs::exists(out / f)) << f;
+    for (const char* f : {"render.png", "render.exr", "solver_state.bin"})
+        EXPECT_FALSE(fs::exists(out / f)) << f;
+    EXPECT_FALSE(fs::exists(stale));
+    std::ifstream in(out / "grids.csv");
+    std::string header, row;
+    std::getline(in, header);
+    std::getline(in, row);
+    double avg = 0, min = 0, max = 0, uniformity = 0;
+    ASSERT_EQ(
+        std::sscanf(row.c_str(), "wp,work_plane,77,%lf,%lf,%lf,%lf", &avg, &min, &max, &uniformity),
+        4)
+        << row;
+    for (double lx : {avg, min, max})
+        EXPECT_NEAR(lx, 8000, 8);
+    EXPECT_NEAR(uniformity, 1, 1e-3);
+    fs::remove_all(dir);
+}
+
 } // namespace
 } // namespace penumbra

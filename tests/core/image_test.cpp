@@ -113,6 +113,23 @@ TEST(Png, EncodesSrgbWithExposureAndClamp) {
     EXPECT_EQ(rgb, expected);
 }
 
+// Bytes already sRGB-encoded are written as they are, rows from the top.
+TEST(Png, WritesEightBitPixelsUnchanged) {
+    const std::string path = test::temp_dir("png") + "/rgb8.png";
+    const std::vector<std::uint8_t> bytes = {0, 1, 2, 3, 4, 5, 250, 251, 252, 253, 254, 255};
+    write_png_rgb8(path, 2, 2, bytes);
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    ASSERT_TRUE(png_image_begin_read_from_file(&png, path.c_str())) << png.message;
+    EXPECT_EQ(png.width, 2u);
+    EXPECT_EQ(png.height, 2u);
+    png.format = PNG_FORMAT_RGB;
+    std::vector<std::uint8_t> rgb(PNG_IMAGE_SIZE(png));
+    ASSERT_TRUE(png_image_finish_read(&png, nullptr, rgb.data(), 0, nullptr)) << png.message;
+    EXPECT_EQ(rgb, bytes);
+    EXPECT_THROW(write_png_rgb8(path, 3, 2, bytes), InternalError);
+}
+
 TEST(Png, ErrorsNameThePath) {
     const std::string dir = test::temp_dir("png");
     try {

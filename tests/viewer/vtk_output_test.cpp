@@ -383,6 +383,50 @@ TEST(WriteVtp, Discontinuities) {
     EXPECT_THROW(write_discontinuities_vtp(path, mesh), InternalError); // the sky casts none
 }
 
+// A 2 × 3 grid missing point (1, 2): 5 vertices, one quad (the only four present
+// neighbours), values by point and the daylight factor against a 2 000 lx reference.
+TEST(WriteVtp, GridPointsAndQuads) {
+    Scene scene;
+    SensorGrid grid;
+    grid.name = "g";
+    grid.rows = 2;
+    grid.columns = 3;
+    grid.spacing_m = 0.5;
+    std::vector<SensorReading> readings;
+    for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 3; ++c) {
+            if (r == 1 && c == 2) {
+                grid.sensors.emplace_back();
+                continue;
+            }
+            grid.sensors.emplace_back(std::uint32_t(scene.sensors.size()));
+            scene.sensors.push_back({"", Vec3(0.5 * c, 0.5 * r, 0.8), Vec3(0, 0, 1)});
+            const double lx = 100.0 * double(scene.sensors.size());
+            readings.push_back({Rgb(), Rgb(), lx / 2, lx});
+        }
+    const std::string path = test::temp_dir("vtp") + "/grid_g.vtp";
+    write_grid_vtp(path, scene, grid, readings, 2000.0);
+    auto data = read_vtp(path);
+    ASSERT_EQ(data->GetNumberOfPoints(), 5);
+    EXPECT_EQ(data->GetNumberOfVerts(), 5);
+    ASSERT_EQ(data->GetNumberOfPolys(), 1);
+    double p[3];
+    data->GetPoint(4, p);
+    EXPECT_EQ(Vec3(p[0], p[1], p[2]), Vec3(0.5, 0.5, 0.8));
+    vtkPointData* points = data->GetPointData();
+    expect_scalar_array(points, "illuminance_total_lx", VTK_DOUBLE,
+                        std::vector<double>{100, 200, 300, 400, 500});
+    expect_scalar_array(points, "illuminance_direct_lx", VTK_DOUBLE,
+                        std::vector<double>{50, 100, 150, 200, 250});
+    expect_scalar_array(points, "daylight_factor_pct", VTK_DOUBLE,
+                        std::vector<double>{5, 10, 15, 20, 25});
+    expect_scalar_array(points, "row", VTK_INT, std::vector<int>{0, 0, 0, 1, 1});
+    expect_scalar_array(points, "column", VTK_INT, std::vector<int>{0, 1, 2, 0, 1});
+    write_grid_vtp(path, scene, grid, readings, std::nullopt);
+    EXPECT_EQ(read_vtp(path)->GetPointData()->GetArray("daylight_factor_pct"), nullptr);
+    EXPECT_THROW(write_grid_vtp(path, scene, grid, {}, std::nullopt), InternalError);
+}
+
 TEST(WritePvd, SeriesStepsAndReplacement) {
     const RadiosityMesh mesh = test_mesh();
     const std::string dir = test::temp_dir("series");

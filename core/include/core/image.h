@@ -1,6 +1,7 @@
 #pragma once
 // RGB float images and their files: linear OpenEXR and tone-mapped sRGB PNG.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,5 +32,11 @@ double auto_exposure(const Image& image);
 
 /// \brief Writes 8-bit sRGB PNG of image × exposure (clamped), atomically.
 void write_png(const std::string& path, const Image& image, double exposure);
+
+/// \brief Writes \p width × \p height pixels of three bytes each (R, G, B, already
+///        sRGB-encoded; row-major, top row first) as an 8-bit PNG, atomically. Throws
+///        InternalError if \p rgb holds another number of bytes, ExternalError on failure.
+void write_png_rgb8(const std::string& path, int width, int height,
+                    const std::vector<std::uint8_t>& rgb);
 
 } // namespace penumbra

@@ -3,6 +3,7 @@
 // the settings of each stage. Everything is in metres and radiometric RGB after loading; the
 // scene file's units and photometric quantities are converted by the loader.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -30,6 +31,44 @@ struct Sensor {
     std::string name;
     Vec3 position; ///< metres
     Vec3 normal;   ///< unit
+};
+
+/// \brief What a sensor grid covers (SensorGrid::kind).
+enum class GridKind {
+    work_plane, ///< `floor`: a plane at a height over a floor, sensors facing up
+    wall,       ///< `wall`: points on a polygon, sensors facing its front
+};
+inline constexpr EnumName<GridKind> k_grid_kind_names[] = {
+    {"work_plane", GridKind::work_plane},
+    {"wall", GridKind::wall},
+};
+template <>
+inline constexpr std::span<const EnumName<GridKind>> k_enum_names<GridKind> = k_grid_kind_names;
+
+/// \brief A square lattice of sensors on a plane (scene key `grids`). Its points are sensors
+///        of Scene::sensors; the lattice lets the outputs compute per-grid statistics and draw
+///        plans. Lattice point (row r, column c) lies at origin + c·spacing·u + r·spacing·v.
+struct SensorGrid {
+    std::string name; ///< also names its output files: letters, digits, '_', '-', '.'
+    GridKind kind = GridKind::work_plane;
+    Vec3 origin;     ///< metres: lattice point (0, 0), present or not
+    Vec3 u{1, 0, 0}; ///< unit: the direction of growing column index
+    Vec3 v{0, 1, 0}; ///< unit, perpendicular to u: growing row index; u × v = sensor normal
+    double spacing_m = 1.0;
+    int rows = 0, columns = 0;
+    /// rows × columns, row-major: each lattice point's index in Scene::sensors, or none where
+    /// the point lies outside the outline or closer to it than the wall offset.
+    std::vector<std::optional<std::uint32_t>> sensors;
+    /// The boundary edges of the grid's polygon(s), moved onto the grid's plane (metres).
+    std::vector<std::array<Vec3, 2>> outline;
+
+    /// \brief The sensor at (\p row, \p column), none if absent or outside the lattice.
+    std::optional<std::uint32_t> sensor_at(int row, int column) const;
+    /// \brief The point at fractional lattice coordinates (\p row, \p column), metres.
+    Vec3 point(double row, double column) const;
+    /// \brief Whether the point at fractional lattice coordinates lies inside the outline
+    ///        (even-odd rule), as plans colour it.
+    bool covers(double row, double column) const;
 };
 
 struct Camera {
@@ -146,6 +185,7 @@ struct Scene {
     std::optional<Sun> sun;
     std::optional<Sky> sky; ///< sky and ground at infinity (issue #30)
     std::vector<Sensor> sensors;
+    std::vector<SensorGrid> grids; ///< lattices of sensors of `sensors` (issue #30)
     std::optional<Camera> camera;
     MesherSettings mesher;
     SolverSettings solver;

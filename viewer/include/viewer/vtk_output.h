@@ -5,6 +5,7 @@
 // "name=unit" strings for the arrays that have a unit.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,15 @@ void write_vtu(const std::string& path, const Scene& scene, const RadiosityMesh&
 ///        scene.sensors[i].
 void write_sensors_vtp(const std::string& path, const Scene& scene,
                        const std::vector<SensorReading>& readings);
+
+/// \brief Writes one sensor grid of \p scene as a .vtp: its present lattice points as
+///        vertices and the quads between four present neighbours (a surface in ParaView), with
+///        point data illuminance_direct_lx, illuminance_total_lx, row, column and, when
+///        \p daylight_reference_lx is given, daylight_factor_pct = 100 × E_total / it.
+///        \p readings[i] belongs to scene.sensors[i].
+void write_grid_vtp(const std::string& path, const Scene& scene, const SensorGrid& grid,
+                    const std::vector<SensorReading>& readings,
+                    std::optional<double> daylight_reference_lx);
 
 /// \brief Writes the discontinuity segments of \p mesh as a .vtp of lines with cell data
 ///        order, source and surface (see DiscontinuitySegment). source is the emitting

@@ -170,7 +170,8 @@ TEST(Clustering, LinksAreSortedByReceiverThenSource) {
     settings.offset = 1e-5 * mesh.scene_diagonal;
     settings.min_area = 1e-3;
     solver::LinkStore store;
-    solver::LinkSet links(h, twin, store, nullptr, embree, scene.point_lights, nullptr, settings);
+    solver::LinkSet links(h, twin, store, nullptr, embree, scene.point_lights, nullptr, nullptr,
+                          settings);
     auto check = [&](const char* when) {
         const auto& all = store.links();
         const auto& offsets = store.receiver_offsets();

@@ -68,7 +68,7 @@ struct Pair {
         tables = std::make_unique<solver::ClusterTables>(
             *h, twin, tree, cv.exitance, cv.exitance_emitted, cv.peak, cv.departure);
         links = std::make_unique<solver::LinkSet>(*h, twin, store, tables.get(), *embree,
-                                                  scene.point_lights, nullptr, settings);
+                                                  scene.point_lights, nullptr, nullptr, settings);
         a = face_cluster(cross(ua, va));
         b = face_cluster(cross(ub, vb));
     }

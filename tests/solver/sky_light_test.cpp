@@ -36,10 +36,11 @@ TEST(SkyPointIrradiance, UniformSkyGivesPiL) {
 TEST(SkyPointIrradiance, OvercastSkyGivesSevenPiOverNineLz) {
     const NoOcclusion open;
     // E_h / L_z = 7π/9 (closed form, /work/shared/validation/README.md §3, 5.9); the
-    // jittered samples' noise: 1e-3 with 4 096 of them at the start, 3e-3 with 1 024.
+    // jittered samples' noise: 1e-3 with 4 096 of them at the start, 3e-3 with 1 024, 5e-3
+    // with 576.
     const std::pair<SkyQuadrature, double> cases[] = {{k_sky_point_quadrature, 1e-3},
                                                       {k_sky_vertex_quadrature, 3e-3},
-                                                      {k_sky_element_quadrature, 3e-3}};
+                                                      {k_sky_element_quadrature, 5e-3}};
     for (const auto& [q, tolerance] : cases) {
         const RgbD e = irradiance(sky_of(CieOvercastSky{}, 1.0), {0, 0, 1}, open, q);
         EXPECT_NEAR(e.g, 7.0 * k_pi / 9.0, tolerance * 7.0 * k_pi / 9.0) << q.side << " a side";

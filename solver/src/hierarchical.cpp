@@ -32,6 +32,7 @@
 #include "hierarchy/leaf_mesh.h"
 #include "iteration/cluster_transport.h"
 #include "iteration/transport.h"
+#include "output/sky_vertices.h"
 #include "output/vertex_values.h"
 #include "state/solver_state.h"
 
@@ -228,6 +229,19 @@ LeafElements leaf_elements(const HierarchicalSystem& sys, const RadiosityMesh& m
     return out;
 }
 
+// The root of each leaf element's node.
+std::vector<std::uint32_t> leaf_roots(const Hierarchy& h,
+                                      const std::vector<std::uint32_t>& element_node) {
+    std::vector<std::uint32_t> out(element_node.size());
+    for (std::size_t e = 0; e < out.size(); ++e) {
+        std::uint32_t n = element_node[e];
+        while (h.parent[n] >= 0)
+            n = std::uint32_t(h.parent[n]);
+        out[e] = n;
+    }
+    return out;
+}
+
 // The vertices' values and the sensors on the leaf mesh \p geo. Frees the refinement's and
 // the clusters' tables once the leaves' direct sources are known: the vertices, the balance
 // and the caller's output stage peaked the 1M floor's memory on top of them.
@@ -245,11 +259,20 @@ Solution leaf_solution(HierarchicalSystem& sys, const Scene& scene, const Radios
         root_emission[e] = mesh.patch_of(std::uint32_t(e)).emission;
     const LeafDirect sources =
         leaf_direct(sys.h, sys.links, sys.clusters, sys.values.b, leaves.leaf.element_node);
+    const RadiosityMesh& out_mesh = leaves.subdivided ? leaves.leaf.mesh : mesh;
+    const std::vector<Rgb> sky =
+        scene.sky
+            ? sky_at_vertices(*scene.sky, mesh, root_geo, out_mesh,
+                              leaf_roots(sys.h, leaves.leaf.element_node), visibility, ctx.seed)
+            : std::vector<Rgb>{};
     leaves.leaf.element_node = {};
     sys.clusters = Clusters{}; // and the cluster links' tables
-    const DirectEmitters emitters{root_geo, direct_sources(scene, root_emission), &sources.near,
-                                  &sources.far};
-    const RadiosityMesh& out_mesh = leaves.subdivided ? leaves.leaf.mesh : mesh;
+    DirectEmitters emitters{root_geo, direct_sources(scene, root_emission), &sources.near,
+                            &sources.far};
+    if (scene.sky) {
+        emitters.sources.sky.reset();
+        emitters.sky = &sky;
+    }
     return make_solution(scene, out_mesh, geo, std::move(leaves.er), visibility, sys.settings.rows,
                          ctx, &emitters);
 }

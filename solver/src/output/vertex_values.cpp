@@ -191,6 +191,8 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
                 sol.vertex_irradiance_direct[v] = gather_direct(source_geo, sources, visibility, p,
                                                                 settings.visibility_rays, ctx.seed);
             }
+            if (emitters && emitters->sky)
+                sol.vertex_irradiance_direct[v] += (*emitters->sky)[v];
             Rgb h = sol.vertex_irradiance_direct[v] + sol.vertex_irradiance_indirect[v];
             sol.vertex_radiosity[v] = patch.emission + patch.reflectance * h;
         });

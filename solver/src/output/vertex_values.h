@@ -61,6 +61,9 @@ struct DirectEmitters {
     GatherSources sources;
     const EmitterLists* near = nullptr;
     const std::vector<Rgb>* far = nullptr;
+    /// Per vertex of the mesh, the sky's direct irradiance (sky_at_vertices); sources.sky is
+    /// then unset, so that the vertices do not gather the sky themselves.
+    const std::vector<Rgb>* sky = nullptr;
 };
 
 Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const ElementGeometry& geo,

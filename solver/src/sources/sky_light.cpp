@@ -164,18 +164,11 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
 Rgb sky_triangle_irradiance(const Sky& sky, const OrientedTriangle& target, double offset,
                             double diagonal, std::uint64_t key, const VisibilityQuery& visibility,
                             std::uint64_t seed) {
-    constexpr double k_near = 2.0 / 3.0, k_far = 1.0 / 6.0;
+    const Vec3 centroid = (target.v[0] + target.v[1] + target.v[2]) / 3.0;
     Pcg32 rng = Pcg32::for_stream(RngPurpose::sky_visibility, key, 0, 0, seed);
-    RgbD sum;
-    for (int i = 0; i < 3; ++i) {
-        const Vec3 p = target.v[std::size_t(i)] * k_near +
-                       target.v[std::size_t((i + 1) % 3)] * k_far +
-                       target.v[std::size_t((i + 2) % 3)] * k_far + target.n * offset;
-        sum += sky_point_irradiance(sky, p, target.n, diagonal, visibility,
-                                    k_sky_element_quadrature, rng);
-    }
-    const RgbD mean = sum * (1.0 / 3.0);
-    return Rgb(float(mean.r), float(mean.g), float(mean.b));
+    const RgbD e = sky_point_irradiance(sky, centroid + target.n * offset, target.n, diagonal,
+                                        visibility, k_sky_element_quadrature, rng);
+    return Rgb(float(e.r), float(e.g), float(e.b));
 }
 
 RgbD shoot_sky(ShootingState& state, const ElementGeometry& geo, const Sky& sky,

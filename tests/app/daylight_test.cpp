@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -13,6 +15,7 @@
 #include "common/test_util.h"
 #include "core/mesh.h"
 #include "core/scene.h"
+#include "core/scene_io.h"
 
 namespace penumbra {
 namespace {
@@ -147,6 +150,57 @@ TEST(GlazingUnderSky, GlazedRoomPowerBalances) {
     // Escape by rays and the panes' hemispherical transmittance for their share: 1 %.
     EXPECT_LT(std::abs(pb.relative_imbalance()), 1e-2);
 }
+
+// ---- The side-lit office against Radiance (data/reference/office, issue #30) ----
+
+/// The illuminances (lx) of a Radiance reference CSV (x,y,z,illuminance_lx), in file order.
+std::vector<double> radiance_reference(const std::string& file) {
+    std::ifstream in(test::source_path(file));
+    std::vector<double> out;
+    std::string line;
+    std::getline(in, line); // header
+    while (std::getline(in, line)) {
+        std::istringstream row(line);
+        std::string cell;
+        for (int column = 0; column < 4 && std::getline(row, cell, ','); ++column)
+            if (column == 3)
+                out.push_back(std::stod(cell));
+    }
+    return out;
+}
+
+class OfficeAgainstRadiance : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(OfficeAgainstRadiance, MeanRelativeDifferenceWithinTwoPercent) {
+    const std::string name = GetParam();
+    const Scene scene = load_scene(test::source_path("data/office/" + name + ".json"));
+    const std::vector<double> ref =
+        radiance_reference("data/reference/office/radiance_" + name + ".csv");
+    ASSERT_EQ(ref.size(), 77u);
+    const app::BakeResult r = test::bake(scene);
+    ASSERT_EQ(r.sensors.size(), ref.size());
+    double sum = 0, sum_abs = 0;
+    int n = 0;
+    for (std::size_t i = 0; i < ref.size(); ++i) {
+        // B's row y = 2 m lies on the edge of the sun patch, where Radiance's point sun
+        // (-dj 0) and Penumbra's 0.5° disc differ by about 10 % (data/reference/office).
+        if (name == "B" && std::abs(scene.sensors[i].position.y - 2.0) < 1e-6)
+            continue;
+        const double d = (r.sensors[i].illuminance_total_lx - ref[i]) / ref[i];
+        sum += d;
+        sum_abs += std::abs(d);
+        ++n;
+    }
+    std::printf("office %s: %d sensors, mean relative difference %+.4f, mean |.| %.4f\n",
+                name.c_str(), n, sum / n, sum_abs / n);
+    // The issue's goal: 2 % in the mean of per-sensor relative differences (Radiance's own
+    // noise is 0.5–1 %, data/reference/office/README.md).
+    EXPECT_LT(std::abs(sum / n), 0.02);
+    EXPECT_LT(sum_abs / n, 0.02);
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, OfficeAgainstRadiance, ::testing::Values("A", "A-open", "B"),
+                         [](const auto& info) { return test::case_name(info.param); });
 
 } // namespace
 } // namespace penumbra

@@ -40,11 +40,7 @@ Scene roof_opening_room() {
     Scene scene;
     auto black = add_material(scene, "black", Rgb(0), {}, false);
     const double H = 3;
-    add_rect(scene, "floor", black, {0, 0, 0}, {4, 0, 0}, {0, 4, 0});
-    add_rect(scene, "wall_y0", black, {0, 0, 0}, {0, 0, H}, {4, 0, 0});
-    add_rect(scene, "wall_y4", black, {0, 4, 0}, {4, 0, 0}, {0, 0, H});
-    add_rect(scene, "wall_x0", black, {0, 0, 0}, {0, 4, 0}, {0, 0, H});
-    add_rect(scene, "wall_x4", black, {4, 0, 0}, {0, 0, H}, {0, 4, 0});
+    test::add_cie171_room_without_ceiling(scene, black);
     // Ceiling in four pieces around the opening (x, y in [1.5, 2.5]), facing down.
     add_rect(scene, "ceiling_s", black, {0, 0, H}, {0, 1.5, 0}, {4, 0, 0});
     add_rect(scene, "ceiling_n", black, {0, 2.5, H}, {0, 1.5, 0}, {4, 0, 0});
@@ -178,7 +174,7 @@ TEST_P(OfficeAgainstRadiance, MeanRelativeDifferenceWithinTwoPercent) {
         radiance_reference("data/reference/office/radiance_" + name + ".csv");
     ASSERT_EQ(ref.size(), 77u);
     const app::BakeResult r = test::bake(scene);
-    ASSERT_EQ(r.sensors.size(), ref.size());
+    ASSERT_GE(r.sensors.size(), ref.size()); // the .pts file's sensors first, then the grid's
     double sum = 0, sum_abs = 0;
     int n = 0;
     for (std::size_t i = 0; i < ref.size(); ++i) {

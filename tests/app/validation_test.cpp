@@ -200,11 +200,7 @@ TEST(Cie171AreaSource, DirectIlluminanceAtSensors) {
     auto black = add_material(scene, "black", Rgb(0), {}, false);
     auto panel = add_material(scene, "panel", Rgb(0), from_photometric(1000.0, Rgb(1.0f)), false);
     const double H = 3;
-    add_rect(scene, "floor", black, {0, 0, 0}, {4, 0, 0}, {0, 4, 0});
-    add_rect(scene, "wall_y0", black, {0, 0, 0}, {0, 0, H}, {4, 0, 0});
-    add_rect(scene, "wall_y4", black, {0, 4, 0}, {4, 0, 0}, {0, 0, H});
-    add_rect(scene, "wall_x0", black, {0, 0, 0}, {0, 4, 0}, {0, 0, H});
-    add_rect(scene, "wall_x4", black, {4, 0, 0}, {0, 0, H}, {0, 4, 0});
+    test::add_cie171_room_without_ceiling(scene, black);
     // Ceiling in four pieces around the panel (x, y in [1.5, 2.5]), all facing down.
     add_rect(scene, "ceiling_s", black, {0, 0, H}, {4, 0, 0}, {0, 1.5, 0});
     add_rect(scene, "ceiling_n", black, {0, 2.5, H}, {4, 0, 0}, {0, 1.5, 0});

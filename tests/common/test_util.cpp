@@ -7,6 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -98,6 +102,31 @@ void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t materi
     add_rect(scene, "wall_y1", material, lo + ey, ex, ez); // faces -y
     add_rect(scene, "wall_x0", material, lo, ey, ez);      // faces +x
     add_rect(scene, "wall_x1", material, lo + ex, ez, ey); // faces -x
+}
+
+void add_cie171_room_without_ceiling(Scene& scene, std::uint32_t material) {
+    const double h = 3;
+    add_rect(scene, "floor", material, {0, 0, 0}, {4, 0, 0}, {0, 4, 0});
+    add_rect(scene, "wall_y0", material, {0, 0, 0}, {0, 0, h}, {4, 0, 0});
+    add_rect(scene, "wall_y4", material, {0, 4, 0}, {4, 0, 0}, {0, 0, h});
+    add_rect(scene, "wall_x0", material, {0, 0, 0}, {0, 4, 0}, {0, 0, h});
+    add_rect(scene, "wall_x4", material, {4, 0, 0}, {0, 0, h}, {0, 4, 0});
+}
+
+int expect_one_line_input_error(const std::function<void()>& load,
+                                const std::vector<std::string>& parts, const std::string& what) {
+    try {
+        load();
+        ADD_FAILURE() << "no InputError for " << what;
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        for (const std::string& part : parts)
+            EXPECT_NE(message.find(part), std::string::npos)
+                << "'" << part << "' missing from: " << message;
+        return e.line();
+    }
+    return 0;
 }
 
 } // namespace penumbra::test

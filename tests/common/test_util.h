@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the test suites.
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -67,5 +68,15 @@ void add_rect(Scene& scene, const std::string& name, std::uint32_t material, con
 
 /// Adds an axis-aligned box room [lo, hi] whose six walls face inwards.
 void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t material);
+
+/// Adds the floor and four walls (facing inwards) of CIE 171's 4 × 4 × 3 m test room, x and y
+/// in [0, 4], z in [0, 3]; the tests add their own ceilings.
+void add_cie171_room_without_ceiling(Scene& scene, std::uint32_t material);
+
+/// \brief Runs \p load and expects an InputError whose message is one line holding each of
+///        \p parts; returns the error's line (0 if none was thrown). \p what names the input
+///        in failure messages.
+int expect_one_line_input_error(const std::function<void()>& load,
+                                const std::vector<std::string>& parts, const std::string& what);
 
 } // namespace penumbra::test

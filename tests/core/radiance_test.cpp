@@ -79,16 +79,7 @@ void expect_vec(const Vec3& got, const Vec3& want, double tolerance) {
 
 /// Loading \p scene_path throws one InputError line holding every one of \p parts.
 void expect_error(const std::string& scene_path, std::initializer_list<std::string> parts) {
-    try {
-        load_scene(scene_path);
-        ADD_FAILURE() << "no InputError";
-    } catch (const InputError& e) {
-        const std::string message = e.what();
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-        for (const std::string& part : parts)
-            EXPECT_NE(message.find(part), std::string::npos)
-                << "'" << part << "' missing from: " << message;
-    }
+    test::expect_one_line_input_error([&] { load_scene(scene_path); }, parts, scene_path);
 }
 
 /// Lines of k_lamp.
@@ -100,17 +91,8 @@ void expect_rad_error(const std::string& text, int line, std::initializer_list<s
     SCOPED_TRACE(text);
     std::vector<std::string> all(parts);
     all.push_back(fmt::format("test.rad:{}:", line + k_lamp_lines));
-    try {
-        load_scene(path);
-        ADD_FAILURE() << "no InputError";
-    } catch (const InputError& e) {
-        const std::string message = e.what();
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-        EXPECT_EQ(e.line(), line + k_lamp_lines);
-        for (const std::string& part : all)
-            EXPECT_NE(message.find(part), std::string::npos)
-                << "'" << part << "' missing from: " << message;
-    }
+    EXPECT_EQ(test::expect_one_line_input_error([&] { load_scene(path); }, all, path),
+              line + k_lamp_lines);
 }
 
 const std::string k_square = "0\n0\n12 0 0 0  1 0 0  1 1 0  0 1 0\n";

@@ -11,6 +11,8 @@
 #include "core/error.h"
 #include "core/scene_io.h"
 
+#include "common/test_util.h"
+
 namespace penumbra {
 namespace {
 
@@ -38,16 +40,7 @@ Scene load(const std::string& grids, const std::string& units = "m") {
 }
 
 void expect_error(const std::string& grids, std::initializer_list<std::string> parts) {
-    try {
-        load(grids);
-        ADD_FAILURE() << "no InputError for " << grids;
-    } catch (const InputError& e) {
-        const std::string message = e.what();
-        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-        for (const std::string& part : parts)
-            EXPECT_NE(message.find(part), std::string::npos)
-                << "'" << part << "' missing from: " << message;
-    }
+    test::expect_one_line_input_error([&] { load(grids); }, parts, grids);
 }
 
 void expect_point(const Vec3& got, const Vec3& expected) {

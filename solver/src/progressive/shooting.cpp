@@ -21,6 +21,19 @@
 
 namespace penumbra::solver {
 
+RgbD ShootingState::receive_from_afar(const std::vector<Rgb>& direct,
+                                      const std::vector<double>& area) {
+    RgbD delivered;
+    for (std::size_t j = 0; j < direct.size(); ++j) {
+        if (direct[j].is_black())
+            continue;
+        receive(j, direct[j], Rgb{});
+        delivered += RgbD(direct[j]) * area[j];
+    }
+    emitted += delivered;
+    return delivered;
+}
+
 ShootingState::ShootingState(const RadiosityMesh& mesh) {
     const std::size_t n = mesh.element_count();
     emission.resize(n);

@@ -28,6 +28,10 @@ struct ShootingState {
         radiosity[j] += reflected;
         unshot_reflected[j] += reflected;
     }
+    /// \brief Every element j receives \p direct[j] from a source at infinity (the sun, the
+    ///        sky), whose power is what it delivers: Σ E A (W per channel), added to emitted
+    ///        and returned.
+    RgbD receive_from_afar(const std::vector<Rgb>& direct, const std::vector<double>& area);
 };
 
 } // namespace penumbra::solver

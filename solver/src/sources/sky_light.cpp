@@ -178,14 +178,7 @@ RgbD shoot_sky(ShootingState& state, const ElementGeometry& geo, const Sky& sky,
         received[j] = sky_triangle_irradiance(sky, geo.oriented(std::uint32_t(j)), geo.offset,
                                               geo.diagonal, j, visibility, settings.seed);
     });
-    RgbD delivered;
-    for (std::size_t j = 0; j < geo.size(); ++j) {
-        if (received[j].is_black())
-            continue;
-        state.receive(j, received[j], Rgb{});
-        delivered += RgbD(received[j]) * geo.area[j];
-    }
-    state.emitted += delivered;
+    const RgbD delivered = state.receive_from_afar(received, geo.area);
     ctx.debug("sky shot: {:.6g} lm delivered", to_photometric(delivered));
     return delivered;
 }

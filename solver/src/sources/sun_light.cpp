@@ -140,14 +140,7 @@ RgbD shoot_sun(ShootingState& state, const ElementGeometry& geo, const Sun& sun,
                                               geo.diagonal, j, 0, visibility, settings)
                           .irradiance;
     });
-    RgbD delivered;
-    for (std::size_t j = 0; j < geo.size(); ++j) {
-        if (received[j].is_black())
-            continue;
-        state.receive(j, received[j], Rgb{});
-        delivered += RgbD(received[j]) * geo.area[j];
-    }
-    state.emitted += delivered;
+    const RgbD delivered = state.receive_from_afar(received, geo.area);
     ctx.debug("sun shot: {:.6g} lm delivered", to_photometric(delivered));
     return delivered;
 }

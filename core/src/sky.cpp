@@ -110,7 +110,8 @@ double upper_hemisphere_integral(const Compass& compass, const Vec3& centre, con
 /// cusp lies where cos θ weighs it little).
 Vec3 quadrature_centre(const Sky& sky) {
     const bool peaks_at_sun = std::holds_alternative<CieGeneralSky>(sky.model) ||
-                              std::holds_alternative<PerezSky>(sky.model);
+                              std::holds_alternative<PerezSky>(sky.model) ||
+                              std::holds_alternative<PerezCoefficientsSky>(sky.model);
     // 2.9°: below it the zenith-centred rule is the better one (both tested to 1e-5).
     constexpr double min_sun_sine = 0.05;
     return peaks_at_sun && dot(sky.sun_direction, sky.compass.up) >= min_sun_sine
@@ -154,7 +155,14 @@ public:
                                   const double zenith = perez_luminance(perez_, 1.0, sun_zenith_);
                                   scale_ = zenith > 0 ? 1 / zenith : 0.0;
                               },
-                              [](const RadianceIntermediateSky&) {}},
+                              [](const RadianceIntermediateSky&) {},
+                              [&](const PerezCoefficientsSky& k) {
+                                  // The zenith's angle to the sun as it is (perezlum.cal's).
+                                  perez_ = {k.a, k.b, k.c, k.d, k.e};
+                                  const double zenith =
+                                      perez_luminance(perez_, 1.0, angle_to_sun(up_));
+                                  scale_ = zenith > 0 ? 1 / zenith : 0.0;
+                              }},
                    sky.model);
         kind_ = sky.model.index();
     }
@@ -169,6 +177,7 @@ public:
         case 2: // CieGeneralSky
             return scale_ * cie_gradation(cie_, dz) * cie_indicatrix(cie_, angle_to_sun(dir));
         case 3: // PerezSky
+        case 5: // PerezCoefficientsSky
             return scale_ * perez_luminance(perez_, dz, angle_to_sun(dir));
         default: // RadianceIntermediateSky
             return radiance_intermediate_sky(std::acos(std::clamp(dz, -1.0, 1.0)),
@@ -190,7 +199,8 @@ private:
 };
 static_assert(std::is_same_v<std::variant_alternative_t<2, SkyModel>, CieGeneralSky> &&
               std::is_same_v<std::variant_alternative_t<3, SkyModel>, PerezSky> &&
-              std::is_same_v<std::variant_alternative_t<4, SkyModel>, RadianceIntermediateSky>);
+              std::is_same_v<std::variant_alternative_t<4, SkyModel>, RadianceIntermediateSky> &&
+              std::is_same_v<std::variant_alternative_t<5, SkyModel>, PerezCoefficientsSky>);
 
 } // namespace
 

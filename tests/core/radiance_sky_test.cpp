@@ -145,6 +145,121 @@ TEST(Gensky, IntermediateSkyLineGivesTheIntermediateModel) {
     EXPECT_NEAR(scene.sky->zenith_radiance / r.zenith_radiance, 1.0, 0.005);
 }
 
+// ---- !gendaylit ----------------------------------------------------------------------------
+
+/// The office B's geometry under the sky of \p line (sky and ground hemispheres driven by its
+/// `skyfunc`).
+Scene scene_under(const std::string& line) {
+    const std::string dir = test::temp_dir("radiance-gendaylit");
+    std::ofstream(dir + "/sky.rad") << line << "\n";
+    const std::string office_dir = test::source_path("data/office");
+    std::ofstream(dir + "/scene.json")
+        << R"({"geometry": [")" << office_dir << R"(/materials.rad", ")" << office_dir
+        << R"(/office.rad", "sky.rad", ")" << office_dir << R"(/skyglow.rad"]})";
+    return load_scene(dir + "/scene.json");
+}
+
+// 21 June (day 172) at solar noon, 45° N, 700 W/m² direct normal, 150 W/m² diffuse. The sun is
+// gensky's (solar_position_gensky). ε, Δ and the luminous efficacies are computed here from
+// Perez et al. 1990 (eqs. 1, 2, 7, 8; Table 4's bin 4.5 ≤ ε < 6.2, 2 cm of precipitable water),
+// Kasten's air mass and Spencer's eccentricity: the sun's normal irradiance is the direct
+// illuminance / 179 lm/W, the sky integrates to the diffuse illuminance (to the quadrature's
+// 1e-4), the ground is ρ (E_d + E_s sin h) / (π 179).
+TEST(Gendaylit, LineGivesPerezsSunSkyAndGround) {
+    const double pi = 3.14159265358979323846;
+    const Scene scene = scene_under("!gendaylit 6 21 +12 -a 45 -o 0 -m 0 -W 700 150 -g 0.2");
+    ASSERT_TRUE(scene.sun && scene.sky);
+    const SolarAngles angles = solar_position_gensky({45, 0, 0}, 6, 21, 12, true);
+    const Compass axes; // Radiance's: z up, y north
+    const Vec3 sun = axes.direction(angles.altitude_deg, angles.azimuth_deg);
+    for (std::size_t i = 0; i < 3; ++i)
+        EXPECT_NEAR(scene.sun->direction[i], sun[i], 1e-9);
+
+    const double z = std::acos(sun.z), kz3 = 1.041 * z * z * z;
+    const double clearness = ((150.0 + 700.0) / 150.0 + kz3) / (1 + kz3);
+    ASSERT_GT(clearness, 4.5);
+    ASSERT_LT(clearness, 6.2);
+    const double z_deg = z * 180 / pi;
+    const double air_mass = 1 / (std::cos(z) + 0.15 * std::pow(93.885 - z_deg, -1.253));
+    const double day_angle = 2 * pi * (172 - 1) / 365.0;
+    const double eccentricity = 1.00011 + 0.034221 * std::cos(day_angle) +
+                                0.00128 * std::sin(day_angle) + 0.000719 * std::cos(2 * day_angle) +
+                                0.000077 * std::sin(2 * day_angle);
+    const double brightness = 150.0 * air_mass / (1367.0 * eccentricity);
+    const double direct_efficacy =
+        105.75 + 0.77 * 2 - 1.26 * std::exp(5.73 * z - 5) - 34.44 * brightness;
+    const double diffuse_efficacy =
+        141.88 + 1.90 * 2 - 53.24 * std::cos(z) - 14.03 * std::log(brightness);
+    const double direct_lx = 700 * direct_efficacy, diffuse_lx = 150 * diffuse_efficacy;
+
+    EXPECT_NEAR(scene.sun->irradiance.g, direct_lx / 179, 1e-5 * direct_lx / 179);
+    EXPECT_NEAR(scene.sun->angular_diameter_deg, 0.533, 1e-12);
+    ASSERT_TRUE(std::holds_alternative<PerezCoefficientsSky>(scene.sky->model));
+    EXPECT_EQ(scene.sky->horizon, Horizon::radiance_blend);
+    EXPECT_NEAR(scene.sky->zenith_radiance *
+                    scene.sky->horizontal_illuminance_per_zenith_luminance(),
+                diffuse_lx / 179, 2e-4 * diffuse_lx / 179);
+    EXPECT_NEAR(scene.sky->ground_radiance.value_or(-1),
+                0.2 * (diffuse_lx + direct_lx * sun.z) / (pi * 179), 1e-5);
+
+    // The sky's shape, through perezlum.cal's coefficients: that of perez_sky_and_sun() for the
+    // same weather and sun.
+    const Sky direct =
+        perez_sky_and_sun(SolarIrradiance{700, 150}, axes, sun, 172, 0.2, Horizon::radiance_blend)
+            .sky;
+    for (const Vec3& dir : {Vec3(0, 0, 1), normalize(Vec3(0, -1, 1)), normalize(Vec3(1, 0, 0.2)),
+                            normalize(Vec3(0, 1, 0.05)), normalize(Vec3(-1, 1, -0.3))}) {
+        const double want = direct.radiance(dir).g;
+        EXPECT_NEAR(scene.sky->radiance(dir).g, want, 1e-9 * want) << dir.x << " " << dir.y;
+    }
+}
+
+// -L gives illuminances, -G the direct light on the horizontal, -s drops the sun.
+TEST(Gendaylit, IlluminanceDirectHorizontalAndNoSun) {
+    const Scene w = scene_under("!gendaylit 6 21 +12 -a 45 -o 0 -m 0 -W 700 150");
+    ASSERT_TRUE(w.sun && w.sky);
+    const double sin_h = w.sun->direction.z;
+    const Scene g = scene_under("!gendaylit 6 21 +12 -a 45 -o 0 -m 0 -G " +
+                                std::to_string(700 * sin_h) + " 150");
+    ASSERT_TRUE(g.sun && g.sky);
+    EXPECT_NEAR(g.sun->irradiance.g, w.sun->irradiance.g, 1e-5 * w.sun->irradiance.g);
+    EXPECT_NEAR(g.sky->zenith_radiance, w.sky->zenith_radiance, 1e-5 * w.sky->zenith_radiance);
+    // The illuminances the -W line stands for give the same sky and sun back.
+    const double direct_lx = w.sun->irradiance.g * 179;
+    const double diffuse_lx =
+        w.sky->zenith_radiance * w.sky->horizontal_illuminance_per_zenith_luminance() * 179;
+    const Scene l = scene_under("!gendaylit 6 21 +12 -a 45 -o 0 -m 0 -L " +
+                                std::to_string(direct_lx) + " " + std::to_string(diffuse_lx));
+    ASSERT_TRUE(l.sun && l.sky);
+    EXPECT_NEAR(l.sun->irradiance.g, w.sun->irradiance.g, 1e-3 * w.sun->irradiance.g);
+    EXPECT_NEAR(l.sky->zenith_radiance, w.sky->zenith_radiance, 1e-3 * w.sky->zenith_radiance);
+    const Scene s = scene_under("!gendaylit 6 21 +12 -a 45 -o 0 -m 0 -W 700 150 -s");
+    EXPECT_FALSE(s.sun.has_value());
+    ASSERT_TRUE(s.sky.has_value());
+    EXPECT_DOUBLE_EQ(s.sky->zenith_radiance, w.sky->zenith_radiance);
+}
+
+// A perezlum.cal brightfunc as gendaylit prints it: A1 (1 + a e^(b/Dz)) (1 + c e^(dγ) + e cos²γ)
+// above the horizon, blended with A2 by skybright.cal's weights (Dz + 1.01)^±10.
+TEST(Gendaylit, PerezlumFunctionGivesItsRadiance) {
+    const Scene scene = scene_under("void brightfunc skyfunc\n2 skybright perezlum.cal\n0\n"
+                                    "10 12.5 3.5 -1.0 -0.32 10 -3 0.45 0 -0.6 0.8");
+    ASSERT_TRUE(scene.sky);
+    ASSERT_TRUE(std::holds_alternative<PerezCoefficientsSky>(scene.sky->model));
+    const Vec3 sun(0, -0.6, 0.8);
+    for (const Vec3& dir : {Vec3(0, 0, 1), normalize(Vec3(0.3, -0.5, 0.8)),
+                            normalize(Vec3(1, 1, 0.1)), normalize(Vec3(0, -1, 0.02))}) {
+        const double gamma = std::acos(std::clamp(dot(dir, sun), -1.0, 1.0));
+        const double c = std::cos(gamma);
+        const double sky =
+            12.5 * (1 - std::exp(-0.32 / dir.z)) * (1 + 10 * std::exp(-3 * gamma) + 0.45 * c * c);
+        const double ws = std::pow(dir.z + 1.01, 10), wg = std::pow(dir.z + 1.01, -10);
+        const double want = (ws * sky + wg * 3.5) / (ws + wg);
+        EXPECT_NEAR(scene.sky->radiance(dir).g, want, 1e-6 * want) << dir.x << " " << dir.z;
+    }
+    EXPECT_DOUBLE_EQ(scene.sky->ground_radiance.value_or(-1), 3.5);
+}
+
 /// The office scene \p name (data/office/).
 Scene office(const std::string& name) {
     return load_scene(test::source_path("data/office/" + name + ".json"));

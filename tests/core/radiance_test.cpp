@@ -307,14 +307,23 @@ TEST(Radiance, ErrorsNameFileAndLine) {
                      {"the file ends", "real argument 3", "'p'"});
     expect_rad_error("void plastic p\n0\n0\n5 1.5 .5 .5 0 0\n", 1, {"plastic 'p'", "[0, 1)"});
     expect_rad_error("\n!genbox grey box 1 1 1\n", 2, {"'!genbox'", "not supported"});
-    expect_rad_error("!gendaylit 3 21 12 -W 800 100\n", 1, {"!gendaylit", "issue #30"});
+    expect_rad_error("!gendaylit 3 21 12 -W 800 100 -O 1\n", 1,
+                     {"!gendaylit", "'-O'", "not supported"});
+    expect_rad_error("\n!gendaylit 3 21 12 -P 3 0.2\n", 2, {"!gendaylit", "'-P'", "not supported"});
+    expect_rad_error("!gendaylit -ang 30 0 -W 800 100\n", 1, {"!gendaylit", "-ang"});
+    expect_rad_error("!gendaylit 3 21 12 -a 45\n", 1, {"!gendaylit", "-W, -L or -G"});
+    expect_rad_error("!gendaylit 3 21 12 -W 800\n", 1, {"!gendaylit", "too few"});
+    expect_rad_error("!gendaylit 3 21 12 -W -1 100\n", 1, {"!gendaylit", "-W", ">= 0"});
+    expect_rad_error("!gendaylit 3 21 EST -W 800 100\n", 1, {"!gendaylit", "hour", "'EST'"});
     expect_rad_error("!xform -n copy part.rad\n", 1, {"!xform", "-n", "not supported"});
     expect_rad_error("!xform -t 1 1 part.rad\n", 1, {"!xform", "-t", "'part.rad'"});
     expect_rad_error("!xform missing.rad\n", 1, {"!xform", "missing.rad", "not found"});
     expect_rad_error("void plastic p\n0\n0\n5 .5 .5 .5 0 0\nvoid plastic p\n0\n0\n5 .4 .4 .4 0 0\n",
                      5, {"'p'", "defined again", "test.rad:10"});
+    expect_rad_error("void brightfunc f\n2 skybright perezlum.cal\n0\n3 1 2 3\n", 1,
+                     {"brightfunc 'f'", "10 real"});
     expect_rad_error("void brightfunc f\n2 skybr perezlum.cal\n0\n3 1 2 3\n", 1,
-                     {"perezlum.cal", "not supported yet"});
+                     {"brightfunc 'f'", "perezlum.cal's 'skybright'"});
     expect_rad_error("void brightfunc f\n2 skybr skybright.cal\n0\n7 5 1 1 1 0 0 1\n", 1,
                      {"brightfunc 'f'", "sky type", "got 5"});
     expect_rad_error("void brightfunc f\n2 other my.cal\n0\n3 2 1 1\n", 1,

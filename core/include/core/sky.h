@@ -58,9 +58,16 @@ struct PerezSky {
 ///        the sun's position.
 struct RadianceIntermediateSky {};
 
+/// \brief Perez's all-weather sky given by its five coefficients a … e directly, as gendaylit
+///        prints them for perezlum.cal (Radiance scenes): l_v = (1 + a exp(b / cos Z))
+///        (1 + c exp(d γ) + e cos² γ), relative to its value at the zenith.
+struct PerezCoefficientsSky {
+    double a = 0, b = 0, c = 0, d = 0, e = 0; ///< all 0: a uniform sky
+};
+
 /// \brief The relative luminance distribution of a sky.
-using SkyModel =
-    std::variant<UniformSky, CieOvercastSky, CieGeneralSky, PerezSky, RadianceIntermediateSky>;
+using SkyModel = std::variant<UniformSky, CieOvercastSky, CieGeneralSky, PerezSky,
+                              RadianceIntermediateSky, PerezCoefficientsSky>;
 
 /// \brief RadianceIntermediateSky's luminance relative to its zenith's, at zenith angle
 ///        \p zenith_angle and angle \p sun_angle from the sun, for the sun at zenith angle

@@ -44,7 +44,8 @@ std::optional<SurfaceMaterial> material_from(const Primitive& p);
 
 /// \brief \p p, a `brightfunc`, as a SkyFunction with its directions moved by \p xf. Throws
 ///        InputError at \p p's line for anything but skybright.cal's `skybr` with sky types 1
-///        (CIE clear), 2 (CIE overcast) or 3 (uniform) and their argument counts.
+///        (CIE clear), 2 (CIE overcast), 3 (uniform) or 4 (intermediate), or perezlum.cal's
+///        `skybright` (PerezCoefficientsSky), and their argument counts.
 SkyFunction sky_function_from(const Primitive& p, const Affine& xf);
 
 /// \brief skybright.cal's `intersky` without its A2 / A4: the intermediate sky's luminance at

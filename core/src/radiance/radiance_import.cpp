@@ -1,6 +1,6 @@
 // The file level of the Radiance importer: reading files, following `!xform` into the files it
-// names, and running `!gensky`. Radiance runs `!` lines as shell commands; Penumbra interprets
-// these two and refuses any other, naming the line.
+// names, and running `!gensky` and `!gendaylit`. Radiance runs `!` lines as shell commands;
+// Penumbra interprets these three and refuses any other, naming the line.
 
 #include "radiance_import.h"
 
@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/files.h"
 
+#include "gendaylit.h"
 #include "gensky.h"
 #include "scene_builder.h"
 #include "syntax.h"
@@ -54,10 +55,14 @@ private:
                 builder_.add(p, xf, invert);
             return;
         }
-        if (name == "gendaylit")
-            fail(c.where, "!gendaylit is not supported yet (issue #30)");
-        fail(c.where,
-             fmt::format("command '!{}' is not supported (supported: !xform, !gensky)", name));
+        if (name == "gendaylit") {
+            for (const Primitive& p : gendaylit_primitives(c))
+                builder_.add(p, xf, invert);
+            return;
+        }
+        fail(c.where, fmt::format("command '!{}' is not supported (supported: !xform, !gensky, "
+                                  "!gendaylit)",
+                                  name));
     }
 
     void run_xform(const Command& c, const std::string& dir, const Affine& xf, bool invert,

@@ -26,8 +26,9 @@ public:
     ~RadianceImport();
 
     /// \brief Reads \p path with the files its `!xform` lines name (relative to the including
-    ///        file's folder) and its `!gensky` lines. Returns its polygons and the materials
-    ///        they use. Throws InputError naming the file and line of anything unsupported.
+    ///        file's folder) and its `!gensky` and `!gendaylit` lines. Returns its polygons and the
+    ///        materials they use. Throws InputError naming the file and line of anything
+    ///        unsupported.
     ImportedGeometry read(const std::string& path);
     /// \brief The sun and the sky every file read so far gave (each optional), and where.
     radiance::Sources sources() const;

@@ -1,7 +1,9 @@
 // skybright.cal's `skybr` (the function gensky's skies call) as Penumbra's sky models. Its
 // arguments: A1 the sky type (1 clear, 2 overcast, 3 uniform, 4 intermediate), A2 the zenith
 // brightness, A3 the ground's, and for the clear and intermediate skies A4 a normalisation and
-// A5–A7 the direction toward the sun.
+// A5–A7 the direction toward the sun. And perezlum.cal's `skybright` (gendaylit's): A1 the
+// diffuse normalisation (the radiance is A1 l_v), A2 the ground's brightness, A3–A7 Perez's
+// a … e, A8–A10 the direction toward the sun.
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "modifiers.h"
+#include "sky_models.h"
 
 namespace penumbra::radiance {
 
@@ -36,22 +39,41 @@ double clear_sky_zenith(double a2, double a4, double sun_zenith_angle) {
     return a2 * cie_clear_indicatrix(sun_zenith_angle) * phi_zenith / a4;
 }
 
-void check_function(const Primitive& p) {
-    if (p.strings.size() == 2 && std::filesystem::path(p.strings[1]).filename() == "perezlum.cal")
-        fail(p.where, fmt::format("brightfunc '{}': perezlum.cal (gendaylit's Perez sky) is not "
-                                  "supported yet (issue #30)",
+bool calls(const Primitive& p, const char* function, const char* file) {
+    return p.strings.size() == 2 && p.strings[0] == function &&
+           std::filesystem::path(p.strings[1]).filename() == file;
+}
+
+/// perezlum.cal's sky: A1 l_v(dir), so its zenith radiance is A1 l_v(zenith).
+SkyFunction perez_sky_function(const Primitive& p, const Affine& xf) {
+    expect_arguments(p, 2, {10}, "diffuse-normalisation ground a b c d e sun-x sun-y sun-z");
+    const std::vector<double>& a = p.reals;
+    const Vec3 sun(a[7], a[8], a[9]);
+    if (!(a[0] >= 0 && a[1] >= 0) || !(length(sun) > 0))
+        fail(p.where, fmt::format("brightfunc '{}': the diffuse normalisation and the ground "
+                                  "brightness must be >= 0 and the sun direction non-zero",
                                   p.id));
-    if (p.strings.size() != 2 || p.strings[0] != "skybr" ||
-        std::filesystem::path(p.strings[1]).filename() != "skybright.cal")
-        fail(p.where, fmt::format("brightfunc '{}': only skybright.cal's 'skybr' is supported "
-                                  "(2 skybr skybright.cal)",
-                                  p.id));
+    const PerezCoefficients k{a[2], a[3], a[4], a[5], a[6]};
+    const double sun_angle_at_zenith = std::acos(std::clamp(normalize(sun).z, -1.0, 1.0));
+    SkyFunction f;
+    f.model = PerezCoefficientsSky{k.a, k.b, k.c, k.d, k.e};
+    f.compass = {.up = xf.direction({0, 0, 1}), .north = xf.direction({0, 1, 0})};
+    f.sun_direction = xf.direction(normalize(sun));
+    f.zenith_radiance = a[0] * perez_luminance(k, 1.0, sun_angle_at_zenith);
+    f.ground_radiance = a[1];
+    return f;
 }
 
 } // namespace
 
 SkyFunction sky_function_from(const Primitive& p, const Affine& xf) {
-    check_function(p);
+    if (calls(p, "skybright", "perezlum.cal"))
+        return perez_sky_function(p, xf);
+    if (!calls(p, "skybr", "skybright.cal"))
+        fail(p.where, fmt::format("brightfunc '{}': only skybright.cal's 'skybr' (2 skybr "
+                                  "skybright.cal) and perezlum.cal's 'skybright' (2 skybright "
+                                  "perezlum.cal) are supported",
+                                  p.id));
     const double type = p.reals.empty() ? 0 : p.reals[0];
     if (type != 1 && type != 2 && type != 3 && type != 4)
         fail(p.where, fmt::format("brightfunc '{}': the sky type (first real argument) must be "

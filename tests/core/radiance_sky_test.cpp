@@ -276,7 +276,11 @@ TEST(OfficeScenes, OvercastGlazedOfficeLoads) {
     const Scene a = office("A");
     EXPECT_EQ(a.polygons.size(), 10u); // floor, ceiling, 3 walls, 4 pieces of the front, pane
     EXPECT_EQ(a.materials.size(), 4u);
-    EXPECT_EQ(a.sensors.size(), 77u);
+    // The .pts file's 77 sensors, then the 'workplane' grid's 77 over the same points.
+    ASSERT_EQ(a.sensors.size(), 154u);
+    ASSERT_EQ(a.grids.size(), 1u);
+    for (std::size_t i = 0; i < 77; ++i)
+        EXPECT_LT(length(a.sensors[77 + i].position - a.sensors[i].position), 1e-9) << i;
     EXPECT_NEAR(a.sensors.front().position.z, 0.85, 1e-12);
     EXPECT_EQ(a.sensors.front().normal, Vec3(0, 0, 1));
     EXPECT_FLOAT_EQ(material_named(a, "wall_mat").reflectance.g, 0.5f);
@@ -297,7 +301,7 @@ TEST(OfficeScenes, OpenOfficeHasNoPane) {
     const Scene open = office("A-open");
     EXPECT_EQ(open.polygons.size(), 9u);
     EXPECT_EQ(open.materials.size(), 3u);
-    EXPECT_EQ(open.sensors.size(), 77u);
+    EXPECT_EQ(open.sensors.size(), 154u); // the .pts file's and the grid's
     EXPECT_TRUE(open.sky.has_value());
 }
 

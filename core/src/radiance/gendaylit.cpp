@@ -4,6 +4,8 @@
 
 #include "gendaylit.h"
 
+#include "command_words.h"
+
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -38,60 +40,13 @@ struct Arguments {
         .latitude_deg = 0.66 * 180 / k_pi, .longitude_deg = -2.13 * 180 / k_pi, .time_zone_h = -8};
 };
 
-class Words {
-public:
-    explicit Words(const Command& command) : command_(command) {}
-    bool more() const { return next_ < command_.words.size(); }
-    const std::string& take() {
-        if (!more())
-            fail(command_.where, "!gendaylit: too few arguments (gendaylit month day hour "
-                                 "-W|-L|-G direct diffuse [options])");
-        return command_.words[next_++];
-    }
-    double number(const std::string& what) {
-        const std::string& word = take();
-        char* end = nullptr;
-        const double v = std::strtod(word.c_str(), &end);
-        if (*end != '\0' || word.empty() || !std::isfinite(v))
-            fail(command_.where,
-                 fmt::format("!gendaylit: {} must be a number, got '{}'", what, word));
-        return v;
-    }
-    int integer(const std::string& what, int lo, int hi) {
-        const double v = number(what);
-        if (v != std::floor(v) || v < lo || v > hi)
-            fail(command_.where, fmt::format("!gendaylit: {} must be an integer in [{}, {}], "
-                                             "got {}",
-                                             what, lo, hi, v));
-        return int(v);
-    }
-    const SourceLine& where() const { return command_.where; }
+using Words = CommandWords;
 
-private:
-    const Command& command_;
-    std::size_t next_ = 1; // after "gendaylit"
-};
-
-/// "[+]H", "[+]H.h" or "[+]H:MM"; a leading + means local solar time.
-void parse_hour(const std::string& word, const SourceLine& where, Arguments& args) {
-    std::string text = word;
-    args.solar_time = text.starts_with('+');
-    if (args.solar_time)
-        text.erase(0, 1);
-    const std::size_t colon = text.find(':');
-    char* end = nullptr;
-    double hour = std::strtod(text.substr(0, colon).c_str(), &end);
-    bool ok = *end == '\0' && !text.empty();
-    if (colon != std::string::npos) {
-        const double minutes = std::strtod(text.c_str() + colon + 1, &end);
-        ok = ok && *end == '\0' && minutes >= 0 && minutes < 60;
-        hour += minutes / 60.0;
-    }
-    if (!ok || !(hour >= 0 && hour <= 24))
-        fail(where, fmt::format("!gendaylit: the hour must be [+]H, [+]H.h or [+]H:MM in "
-                                "[0, 24] (time-zone names are not supported), got '{}'",
-                                word));
-    args.hour = hour;
+/// The hour argument into \p args.
+void parse_hour(const std::string& word, const Words& in, Arguments& args) {
+    const CommandHour hour = parse_command_hour(word, in);
+    args.hour = hour.hour;
+    args.solar_time = hour.solar_time;
 }
 
 /// One option; false if \p option is not one Penumbra reads.
@@ -125,14 +80,14 @@ bool parse_option(const std::string& option, Words& in, Arguments& args) {
 }
 
 Arguments parse_arguments(const Command& command) {
-    Words in(command);
+    Words in(command, "gendaylit month day hour -W|-L|-G direct diffuse [options]");
     Arguments args;
     if (in.more() && command.words[1] == "-ang")
         fail(command.where, "!gendaylit: -ang is not supported (the Perez sky needs the day of "
                             "the year: give month day hour)");
     args.month = in.integer("the month", 1, 12);
     args.day = in.integer("the day", 1, 31);
-    parse_hour(in.take(), in.where(), args);
+    parse_hour(in.take(), in, args);
     while (in.more()) {
         const std::string option = in.take();
         if (!parse_option(option, in, args))

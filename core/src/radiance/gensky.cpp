@@ -4,6 +4,8 @@
 
 #include "gensky.h"
 
+#include "command_words.h"
+
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -47,57 +49,13 @@ struct Arguments {
     Location site{.latitude_deg = 0.66 / k_rad, .longitude_deg = -2.13 / k_rad, .time_zone_h = -8};
 };
 
-class Words {
-public:
-    explicit Words(const Command& command) : command_(command) {}
-    bool more() const { return next_ < command_.words.size(); }
-    const std::string& take() {
-        if (!more())
-            fail(command_.where, "!gensky: too few arguments (gensky month day hour [options])");
-        return command_.words[next_++];
-    }
-    double number(const std::string& what) {
-        const std::string& word = take();
-        char* end = nullptr;
-        const double v = std::strtod(word.c_str(), &end);
-        if (*end != '\0' || word.empty() || !std::isfinite(v))
-            fail(command_.where, fmt::format("!gensky: {} must be a number, got '{}'", what, word));
-        return v;
-    }
-    int integer(const std::string& what, int lo, int hi) {
-        const double v = number(what);
-        if (v != std::floor(v) || v < lo || v > hi)
-            fail(command_.where, fmt::format("!gensky: {} must be an integer in [{}, {}], got {}",
-                                             what, lo, hi, v));
-        return int(v);
-    }
-    const SourceLine& where() const { return command_.where; }
+using Words = CommandWords;
 
-private:
-    const Command& command_;
-    std::size_t next_ = 1; // after "gensky"
-};
-
-/// "[+]H", "[+]H.h" or "[+]H:MM"; a leading + means local solar time.
-void parse_hour(const std::string& word, const SourceLine& where, Arguments& args) {
-    std::string text = word;
-    args.solar_time = text.starts_with('+');
-    if (args.solar_time)
-        text.erase(0, 1);
-    const std::size_t colon = text.find(':');
-    char* end = nullptr;
-    double hour = std::strtod(text.substr(0, colon).c_str(), &end);
-    bool ok = *end == '\0' && !text.empty();
-    if (colon != std::string::npos) {
-        const double minutes = std::strtod(text.c_str() + colon + 1, &end);
-        ok = ok && *end == '\0' && minutes >= 0 && minutes < 60;
-        hour += minutes / 60.0;
-    }
-    if (!ok || !(hour >= 0 && hour <= 24))
-        fail(where, fmt::format("!gensky: the hour must be [+]H, [+]H.h or [+]H:MM in [0, 24] "
-                                "(time-zone names are not supported), got '{}'",
-                                word));
-    args.hour = hour;
+/// The hour argument into \p args.
+void parse_hour(const std::string& word, const Words& in, Arguments& args) {
+    const CommandHour hour = parse_command_hour(word, in);
+    args.hour = hour.hour;
+    args.solar_time = hour.solar_time;
 }
 
 void parse_when(Words& in, Arguments& args) {
@@ -113,7 +71,7 @@ void parse_when(Words& in, Arguments& args) {
         fail(in.where(), fmt::format("!gensky: the month must be in [1, 12], got '{}'", first));
     args.month = int(month);
     args.day = in.integer("the day", 1, 31);
-    parse_hour(in.take(), in.where(), args);
+    parse_hour(in.take(), in, args);
 }
 
 /// One option; false if \p option is not one of gensky's.
@@ -150,7 +108,7 @@ bool parse_option(const std::string& option, Words& in, Arguments& args) {
 }
 
 Arguments parse_arguments(const Command& command) {
-    Words in(command);
+    Words in(command, "gensky month day hour [options]");
     Arguments args;
     parse_when(in, args);
     while (in.more()) {

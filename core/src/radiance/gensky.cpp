@@ -85,9 +85,10 @@ void parse_hour(const std::string& word, const SourceLine& where, Arguments& arg
     if (args.solar_time)
         text.erase(0, 1);
     const std::size_t colon = text.find(':');
+    const std::string hours = text.substr(0, colon); // named: `end` points into it
     char* end = nullptr;
-    double hour = std::strtod(text.substr(0, colon).c_str(), &end);
-    bool ok = *end == '\0' && !text.empty();
+    double hour = std::strtod(hours.c_str(), &end);
+    bool ok = *end == '\0' && !hours.empty();
     if (colon != std::string::npos) {
         const double minutes = std::strtod(text.c_str() + colon + 1, &end);
         ok = ok && *end == '\0' && minutes >= 0 && minutes < 60;

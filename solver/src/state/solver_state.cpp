@@ -72,7 +72,8 @@ public:
     void take(void* out, std::size_t n) {
         if (n > bytes_.size() - at_)
             fail("truncated or corrupt");
-        std::memcpy(out, bytes_.data() + at_, n);
+        if (n > 0) // an empty array's data() may be null, which memcpy must not get
+            std::memcpy(out, bytes_.data() + at_, n);
         at_ += n;
     }
     bool done() const { return at_ == bytes_.size(); }

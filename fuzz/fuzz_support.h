@@ -1,7 +1,6 @@
 #pragma once
-// Shared by the fuzz targets (fuzz/README in docs/validation.md, "Fuzzing"): a private folder
-// for the files a target writes, and the rule that a parser rejects bad input only with
-// Penumbra's documented errors.
+// Shared by the fuzz targets (README.md, "Fuzzing"): a private folder for the files a target
+// writes, and the rule that a parser rejects bad input only with Penumbra's documented errors.
 
 #include <string>
 #include <string_view>

@@ -26,18 +26,6 @@ namespace {
 // Version 9: a checksum follows the fields, so that a corrupted file is refused, not solved.
 constexpr char k_magic[8] = {'P', 'N', 'B', 'R', 'H', 'R', 'S', '9'};
 
-/// Chained mix64 of the bytes' 64-bit words and their count. Each step is a bijection of the
-/// running hash, so a change confined to one word always changes the result.
-std::uint64_t checksum(std::string_view bytes) {
-    std::uint64_t h = hash_words({bytes.size()});
-    for (std::size_t at = 0; at < bytes.size(); at += sizeof(std::uint64_t)) {
-        std::uint64_t word = 0;
-        std::memcpy(&word, bytes.data() + at, std::min(sizeof(word), bytes.size() - at));
-        h = mix64(h ^ mix64(word + 0x632be59bd9b4e019ULL));
-    }
-    return h;
-}
-
 class Writer {
 public:
     explicit Writer(std::ostream& out) : out_(out) {}
@@ -84,7 +72,8 @@ public:
     void take(void* out, std::size_t n) {
         if (n > bytes_.size() - at_)
             fail("truncated or corrupt");
-        std::memcpy(out, bytes_.data() + at_, n);
+        if (n > 0) // an empty array's data() may be null, which memcpy must not get
+            std::memcpy(out, bytes_.data() + at_, n);
         at_ += n;
     }
     bool done() const { return at_ == bytes_.size(); }
@@ -118,11 +107,23 @@ void check_magic_and_checksum(const std::string& bytes, const std::string& path)
     const std::string_view payload(bytes.data(), bytes.size() - sizeof(std::uint64_t));
     std::uint64_t stored = 0;
     std::memcpy(&stored, bytes.data() + payload.size(), sizeof(stored));
-    if (stored != checksum(payload))
+    if (stored != state_checksum(payload))
         throw InputError(path, "", "is corrupt (checksum mismatch): bake without --reuse");
 }
 
 } // namespace
+
+// Chained mix64 of the bytes' 64-bit words and their count. Each step is a bijection of the
+// running hash, so a change confined to one word always changes the result.
+std::uint64_t state_checksum(std::string_view bytes) {
+    std::uint64_t h = hash_words({bytes.size()});
+    for (std::size_t at = 0; at < bytes.size(); at += sizeof(std::uint64_t)) {
+        std::uint64_t word = 0;
+        std::memcpy(&word, bytes.data() + at, std::min(sizeof(word), bytes.size() - at));
+        h = mix64(h ^ mix64(word + 0x632be59bd9b4e019ULL));
+    }
+    return h;
+}
 
 std::uint64_t mesh_geometry_hash(const RadiosityMesh& mesh) {
     std::uint64_t h = hash_words({mesh.element_count(), mesh.vertex_count()});
@@ -169,7 +170,7 @@ void write_hierarchical_state(const HierarchicalState& s, const std::string& pat
         w.vec(s.weights.signature);
     }
     std::string bytes = std::move(out).str();
-    const std::uint64_t sum = checksum(bytes);
+    const std::uint64_t sum = state_checksum(bytes);
     bytes.append(reinterpret_cast<const char*>(&sum), sizeof(sum));
     write_text_file(path, bytes); // binary-safe, and atomic
 }

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/mesh.h"
@@ -27,6 +28,10 @@ struct HierarchicalState {
     std::vector<Rgb> radiosity; ///< per node
     LeafWeights weights;        ///< of the saved links (geometry only: reused as they are)
 };
+
+/// The checksum that ends a state file, of all the bytes before it (the fuzz target fixes it up
+/// so that corrupt contents reach the reader's other checks).
+std::uint64_t state_checksum(std::string_view bytes);
 
 /// Hash of the elements' vertices, patches and twins: equal meshes, equal hashes.
 std::uint64_t mesh_geometry_hash(const RadiosityMesh& mesh);

@@ -16,6 +16,12 @@ struct OrientedTriangle {
     Vec3 n;
 };
 
+/// \brief How far a ray toward a source at infinity (the sun, the sky) goes: out of the scene
+///        from any point in it, whose diagonal is \p diagonal metres.
+inline float distant_reach(double diagonal) {
+    return float(2.0 * diagonal + 1.0);
+}
+
 /// Per-element geometry in double precision, precomputed once.
 struct ElementGeometry {
     std::vector<std::array<Vec3, 3>> triangle;

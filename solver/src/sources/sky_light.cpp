@@ -31,7 +31,6 @@ constexpr int k_luminance_depth = 2;
 /// π / (side << depth)², and cells stay nearly square, also at the normal.
 struct Cell {
     std::int64_t i = 0, j = 0;
-    int depth = 0;
 };
 
 /// What a cell's four samples saw.
@@ -48,11 +47,6 @@ Vec3 cell_direction(const Frame& frame, double a, double b) {
     }
     const double dx = r * std::cos(phi), dy = r * std::sin(phi);
     return frame.to_world(Vec3(dx, dy, std::sqrt(std::max(0.0, 1.0 - dx * dx - dy * dy))));
-}
-
-/// Rays toward the sky end this far away: out of the scene from any point in it.
-float sky_reach(double diagonal) {
-    return float(2.0 * diagonal + 1.0);
 }
 
 /// Whether the four samples of a cell (transmittances \p t, sky radiances \p l) call for
@@ -111,13 +105,14 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
                           const VisibilityQuery& visibility, const SkyQuadrature& quadrature,
                           Pcg32& rng) {
     const Frame frame = Frame::from_normal(n);
-    const float reach = sky_reach(diagonal);
+    const float reach = distant_reach(diagonal);
     const Vec3f origin(from);
     std::vector<Cell> cells, finer;
     for (int i = 0; i < quadrature.side; ++i)
         for (int j = 0; j < quadrature.side; ++j)
-            cells.push_back({i, j, 0});
+            cells.push_back({i, j});
     std::vector<Segment> rays;
+    std::vector<Vec3> dirs;
     std::vector<Rgb> radiance;
     std::vector<float> t;
     std::vector<CellSight> sights;
@@ -126,15 +121,18 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
         const std::int64_t side = std::int64_t(quadrature.side) << depth;
         const double d = 1.0 / double(side);
         rays.clear();
-        radiance.clear();
+        dirs.clear();
         for (const Cell& c : cells)
             for (int s = 0; s < 4; ++s) {
                 const double a = d * (double(c.i) + ((s / 2) + rng.next_double()) / 2);
                 const double b = d * (double(c.j) + ((s % 2) + rng.next_double()) / 2);
-                const Vec3 dir = cell_direction(frame, a, b);
-                rays.push_back({origin, Vec3f(dir), 0.0f, reach});
-                radiance.push_back(sky.radiance(dir));
+                dirs.push_back(cell_direction(frame, a, b));
+                rays.push_back({origin, Vec3f(dirs.back()), 0.0f, reach});
             }
+        // One call per level: the sky's own constants (Perez's coefficients, the CIE
+        // normalisation) are computed once rather than per ray.
+        radiance.resize(dirs.size());
+        sky.radiance(dirs, radiance);
         t.resize(rays.size());
         visibility.transmittance(rays, t);
         sights.clear();
@@ -148,7 +146,7 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
                 (sights[k] == CellSight::varies || level.beside_an_edge(c, sights[k]))) {
                 for (int a = 0; a < 2; ++a)
                     for (int b = 0; b < 2; ++b)
-                        finer.push_back({2 * c.i + a, 2 * c.j + b, depth + 1});
+                        finer.push_back({2 * c.i + a, 2 * c.j + b});
                 continue;
             }
             RgbD cell;

@@ -17,11 +17,6 @@ constexpr int k_rim_probes = 16;
 /// A point in a penumbra casts this many times solver.visibility_rays rays over the disc.
 constexpr int k_penumbra_rays_factor = 8;
 
-/// Rays toward the sun end this far away: out of the scene from any point in it.
-float sun_reach(double diagonal) {
-    return float(2.0 * diagonal + 1.0);
-}
-
 /// The transmittances of some segments: their mean (the fraction open, panes of glazing
 /// counting their T(θ)) and whether they all agree.
 struct OpenFraction {
@@ -69,7 +64,7 @@ Vec3 sun_disc_direction(const Sun& sun, double u1, double u2) {
 SunRays sun_rays_open(const Sun& sun, const OrientedTriangle& target, double offset,
                       double diagonal, int rays, const VisibilityQuery& visibility, Pcg32& rng) {
     std::vector<Segment> segments(std::size_t(std::max(1, rays)));
-    const float reach = sun_reach(diagonal);
+    const float reach = distant_reach(diagonal);
     for (Segment& seg : segments) {
         const Vec3 from =
             sample_triangle(target.v, rng.next_double(), rng.next_double()) + target.n * offset;
@@ -90,7 +85,7 @@ SunRays sun_rays_open(const Sun& sun, const OrientedTriangle& target, double off
 
 double sun_point_visibility(const Sun& sun, const Vec3& from, double diagonal, int rays,
                             const VisibilityQuery& visibility, Pcg32& rng) {
-    const float reach = sun_reach(diagonal);
+    const float reach = distant_reach(diagonal);
     const Vec3f origin(from);
     const double radius = sun.angular_radius();
     std::vector<Segment> probes{{origin, Vec3f(sun.direction), 0.0f, reach}};

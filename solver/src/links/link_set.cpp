@@ -169,9 +169,9 @@ LightLink LinkSet::make_sun_link(std::uint32_t q) const {
 
 // The sky's link: its irradiance on the receiver. It is not refined: what the sky's direct
 // light looks like on the mesh comes from the vertices' own gathers, and the light it
-// reflects is smooth at the mesh's element size; refining on the spread of the sky's values
-// took an office's leaves from 8 700 to 32 000. Panes of glazing let
-// the sky through and take none.
+// reflects is smooth at the mesh's element size, so refining on the sky's variation would
+// multiply the leaves for nothing (docs/daylight.md). Panes of glazing let the sky through
+// and take none.
 LightLink LinkSet::make_sky_link(std::uint32_t q) const {
     if (!h_.opaque[q])
         return {q, LightId(SkySource{}), Rgb{}, 0, 0};

@@ -2,8 +2,8 @@
 // The sky's direct light at the vertices of the hierarchical solver's leaf mesh: gathered at
 // the vertices of the input mesh (its roots) and interpolated linearly over each root to the
 // vertices refinement added. The sky's light varies smoothly at the input mesh's element size
-// (no hard shadows), and the gather is the costliest part of a daylight bake: refinement for
-// the sun's patch or interreflection tripled an office's vertices.
+// (no hard shadows), and the gather is the costliest part of a daylight bake, which refinement
+// for the sun's patch or interreflection would multiply (docs/daylight.md).
 
 #include <cstdint>
 #include <span>

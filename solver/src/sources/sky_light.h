@@ -28,9 +28,8 @@ struct SkyQuadrature {
     int max_depth = 6;
 };
 
-// The starting cells decide what is found, the depth how finely its edges are resolved; on
-// the side-lit office (docs/daylight.md) 12 cells a side missed a window at some sensors
-// (−13 %), 16 and more did not, and depth beyond 4 changed the sensors by 0.1 %.
+// The starting cells decide what is found, the depth how finely its edges are resolved (the
+// office's calibration of both: docs/daylight.md).
 
 /// For sensors: 1 024 starting cells (about 6° across at the normal), split down to 0.2°.
 inline constexpr SkyQuadrature k_sky_point_quadrature{32, 5};
@@ -48,7 +47,7 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
 /// \brief The sky's irradiance on \p target: at its centroid lifted by \p offset, with
 ///        k_sky_element_quadrature and the stream (sky_visibility, key, 0, 0, seed). One point
 ///        (not a rule over the triangle): the links' values only feed interreflection, which
-///        is smooth at the mesh's element size, and three points cost the office 3 s more.
+///        is smooth at the mesh's element size, and more points multiply the links' rays.
 Rgb sky_triangle_irradiance(const Sky& sky, const OrientedTriangle& target, double offset,
                             double diagonal, std::uint64_t key, const VisibilityQuery& visibility,
                             std::uint64_t seed);

@@ -83,6 +83,7 @@ RadiosityResponse radiosity_response(const Material& m) {
     r.emission = m.emission;
     r.two_sided = m.two_sided;
     r.emission_two_sided = m.emission_two_sided;
+    r.diffuse_transmittance = m.diffuse_transmittance;
     if (m.lobe)
         if (const auto* glass = std::get_if<ThinGlass>(&*m.lobe))
             r.transmittance = glass->hemispherical_transmittance();

@@ -109,6 +109,8 @@ void apply_materials(Scene& scene, const std::vector<MaterialSpec>& specs) {
         Material& material = scene.materials[find_or_add_material(scene, spec.name)];
         if (spec.reflectance)
             material.reflectance = *spec.reflectance;
+        if (spec.diffuse_transmittance)
+            material.diffuse_transmittance = *spec.diffuse_transmittance;
         if (spec.emission) {
             material.emission = *spec.emission;
             material.emission_flux_lm.reset();
@@ -302,6 +304,26 @@ std::string beyond_source_range(const Rgb& c, const char* unit) {
                        unit, k_max_source_value);
 }
 
+// τ passes to the other side: a one-sided surface has none, and ρ + τ < 1 keeps the solve
+// convergent (each side returns less than it receives).
+void validate_diffuse_transmittance(const Scene& scene, const Material& m, const std::string& key) {
+    const Rgb& tau = m.diffuse_transmittance;
+    if (tau.is_black())
+        return;
+    bool ok = true;
+    for (int c = 0; c < 3; ++c)
+        ok = ok && tau[c] >= 0 && m.reflectance[c] + tau[c] < 1;
+    check(ok, scene, key + ".diffuse_transmittance",
+          fmt::format("must be >= 0 with reflectance + diffuse_transmittance < 1 per channel, got "
+                      "{} and reflectance {}",
+                      format_rgb(tau), format_rgb(m.reflectance)));
+    check(m.two_sided, scene, key + ".two_sided",
+          "a diffusely transmitting material must be two-sided (its light passes to the other "
+          "side)");
+    check(!m.lobe, scene, key + ".diffuse_transmittance",
+          "diffuse transmission takes a diffuse material, not thin glass or another lobe");
+}
+
 void validate_material(const Scene& scene, const Material& m) {
     const std::string key = "materials." + m.name;
     bool reflectance_ok = true;
@@ -317,8 +339,7 @@ void validate_material(const Scene& scene, const Material& m) {
     if (m.emission_flux_lm)
         check(std::isfinite(*m.emission_flux_lm) && *m.emission_flux_lm >= 0, scene,
               key + ".emission_flux_lm", fmt::format("must be >= 0, got {}", *m.emission_flux_lm));
-    check(m.diffuse_transmittance.is_black(), scene, key,
-          "diffuse transmission (Radiance 'trans') is not supported yet (issue #30)");
+    validate_diffuse_transmittance(scene, m, key);
 }
 
 // The same ranges as the scene file's "spot" (scene_json.cpp), for spots built in code; the

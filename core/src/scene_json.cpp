@@ -232,7 +232,8 @@ double transmissivity_from_normal(double tn_normal, double ior) {
 // "type": "thin_glass" with "transmissivity" (Radiance's glass input) or
 // "transmittance_normal" (what a glazing's data sheet gives), per channel, and "ior".
 ThinGlass parse_thin_glass(const Field& field) {
-    for (const char* key : {"reflectance", "emission", "emission_flux_lm", "emission_color"})
+    for (const char* key :
+         {"reflectance", "diffuse_transmittance", "emission", "emission_flux_lm", "emission_color"})
         if (field.has(key))
             field.child(key).fail("a thin_glass material has no diffuse part or emission");
     ThinGlass glass;
@@ -263,7 +264,7 @@ ThinGlass parse_thin_glass(const Field& field) {
 MaterialSpec parse_material(const Field& field, const std::string& name) {
     field.expect_keys({"type", "reflectance", "emission", "emission_flux_lm", "emission_color",
                        "two_sided", "emission_two_sided", "transmissivity", "transmittance_normal",
-                       "ior"});
+                       "ior", "diffuse_transmittance"});
     if (name.empty())
         field.fail("a material name must not be empty");
     MaterialSpec spec;
@@ -280,6 +281,8 @@ MaterialSpec parse_material(const Field& field, const std::string& name) {
                 field.child(key).fail("is only used with \"type\": \"thin_glass\"");
     if (field.has("reflectance"))
         spec.reflectance = field.child("reflectance").rgb();
+    if (field.has("diffuse_transmittance"))
+        spec.diffuse_transmittance = field.child("diffuse_transmittance").rgb();
     if (field.has("emission"))
         spec.emission = field.child("emission").rgb();
     if (field.has("emission_flux_lm"))

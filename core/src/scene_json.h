@@ -16,6 +16,7 @@ namespace penumbra {
 struct MaterialSpec {
     std::string name;
     std::optional<Rgb> reflectance;
+    std::optional<Rgb> diffuse_transmittance;
     std::optional<Rgb> emission; ///< W/(sr·m²)
     std::optional<double> emission_flux_lm;
     std::optional<Rgb> emission_color; ///< only with emission_flux_lm

@@ -213,7 +213,7 @@ LeafElements leaf_elements(const HierarchicalSystem& sys, const RadiosityMesh& m
     out.subdivided = h.size() > h.root_count;
     LeafMesh& leaf = out.leaf;
     if (out.subdivided) {
-        leaf = build_leaf_mesh(mesh, h, sys.twin);
+        leaf = build_leaf_mesh(mesh, h);
     } else {
         leaf.element_node.resize(h.root_count);
         std::iota(leaf.element_node.begin(), leaf.element_node.end(), 0u);
@@ -284,7 +284,6 @@ std::shared_ptr<HierarchicalState> saved_state(HierarchicalSystem& sys, const Ra
     auto state = std::make_shared<HierarchicalState>();
     state->mesh_hash = mesh_geometry_hash(mesh);
     state->clustered = clustered;
-    state->twin = sys.twin;
     state->links = sys.links.take_links();
     state->cluster_links = sys.links.take_cluster_links();
     state->radiosity = sys.values.b;

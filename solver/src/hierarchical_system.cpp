@@ -76,6 +76,7 @@ Hierarchy reused_hierarchy(const RadiosityMesh& mesh, const HierarchicalState& s
         const Patch& p = mesh.patches[h.patch[n]];
         h.emission[n] = p.emission;
         h.reflectance[n] = p.reflectance;
+        h.transmittance[n] = p.diffuse_transmittance;
         h.opaque[n] = p.opaque() ? 1 : 0;
     }
     return h;
@@ -131,7 +132,7 @@ void make_clusters(HierarchicalSystem& sys, const Scene& scene, const Context& c
     clusters.tree = build_cluster_tree(h);
     init_cluster_values(clusters.tree, h, sys.values.b, clusters.values);
     const ClusterValues& cv = clusters.values;
-    clusters.tables = std::make_unique<ClusterTables>(h, sys.twin, clusters.tree, cv.exitance,
+    clusters.tables = std::make_unique<ClusterTables>(h, clusters.tree, cv.exitance,
                                                       cv.exitance_emitted, cv.peak, cv.departure);
     ctx.info("hierarchical: {} clusters over {} elements", clusters.tree.size(), h.root_count);
 }
@@ -261,7 +262,7 @@ void check_reusable(const RadiosityMesh& mesh, const HierarchicalState& state) {
 HierarchicalSystem::HierarchicalSystem(const Scene& scene, const RadiosityMesh& mesh,
                                        const Context& ctx, const HierarchicalState* reuse)
     : h(reuse ? reused_hierarchy(mesh, *reuse) : Hierarchy(mesh)),
-      twin(reuse ? reuse->twin : mesh.element_twin), settings(refine_settings(scene, mesh, ctx)) {
+      settings(refine_settings(scene, mesh, ctx)) {
     emitted = emitted_power_max(h, scene.point_lights); // and the sun's and sky's, once linked
     values.b = reuse ? reuse->radiosity : h.emission;
     values.b_range.assign(h.size(), 0.0f);
@@ -274,9 +275,9 @@ build_hierarchical(const Scene& scene, const RadiosityMesh& mesh, const Visibili
     auto sys = std::make_unique<HierarchicalSystem>(scene, mesh, ctx, reuse);
     make_clusters(*sys, scene, ctx, reuse);
     // Lives as long as refinement: the system keeps the links and the cluster tables.
-    LinkSet refiner(sys->h, sys->twin, sys->links, sys->clusters.tables.get(), visibility,
-                    scene.point_lights, scene.sun ? &*scene.sun : nullptr,
-                    scene.sky ? &*scene.sky : nullptr, sys->settings);
+    LinkSet refiner(sys->h, sys->links, sys->clusters.tables.get(), visibility, scene.point_lights,
+                    scene.sun ? &*scene.sun : nullptr, scene.sky ? &*scene.sky : nullptr,
+                    sys->settings);
     link_system(*sys, refiner, scene, ctx, reuse);
     sys->iteration = scene.solver.iteration;
     if (reuse)

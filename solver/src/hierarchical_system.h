@@ -33,7 +33,6 @@ struct HierarchicalSystem {
     HierarchicalSystem& operator=(const HierarchicalSystem&) = delete;
 
     Hierarchy h;
-    std::vector<std::int32_t> twin;
     RefineSettings settings;
     LinkStore links;
     /// The cluster tree, its values and tables, when clustering.

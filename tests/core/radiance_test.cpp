@@ -147,13 +147,20 @@ TEST(Radiance, LightGlowAndIllumEmitTheirRadiance) {
     EXPECT_EQ(material_named(scene, "i").emission, Rgb(4, 5, 6));
 }
 
-TEST(Radiance, TransIsReadButNotSupportedYet) {
-    const std::string path =
-        write_scene({{"test.rad", k_lamp +
-                                      "void trans blind\n0\n0\n7 0.5 0.5 0.5 0 0 0.4 0\n"
-                                      "blind polygon slat\n" +
-                                      k_square}});
-    expect_error(path, {"blind", "trans", "not supported yet (issue #30)"});
+// trans "r g b spec rough trans tspec": of the light not reflected specularly, trans passes
+// (Radiance's reference manual); its diffuse parts are ρ = c (1 − spec)(1 − trans) and
+// τ = c (1 − spec) trans (1 − tspec).
+TEST(Radiance, TransGivesDiffuseReflectanceAndTransmittance) {
+    const Scene scene = load_rad("void trans blind\n0\n0\n7 0.5 0.6 0.7 0.1 0 0.4 0.25\n"
+                                 "blind polygon slat\n" +
+                                 k_square);
+    const Material& m = material_named(scene, "blind");
+    const Rgb c(0.5f, 0.6f, 0.7f);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(m.reflectance[i], c[i] * 0.9 * 0.6, 1e-6) << i;
+        EXPECT_NEAR(m.diffuse_transmittance[i], c[i] * 0.9 * 0.4 * 0.75, 1e-6) << i;
+    }
+    EXPECT_TRUE(m.two_sided);
 }
 
 TEST(Radiance, UnitsScaleVerticesAndUnusedMaterialsAreLeftOut) {

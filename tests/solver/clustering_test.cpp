@@ -163,14 +163,13 @@ TEST(Clustering, LinksAreSortedByReceiverThenSource) {
     Scene scene = lamp_room("off", 1e-2);
     const RadiosityMesh mesh = mesher::build_mesh(scene, test::quiet_context());
     solver::Hierarchy h(mesh);
-    std::vector<std::int32_t> twin = mesh.element_twin;
     const raytrace::EmbreeScene embree(mesh);
     solver::RefineSettings settings;
     settings.rows.visibility_rays = 4;
     settings.offset = 1e-5 * mesh.scene_diagonal;
     settings.min_area = 1e-3;
     solver::LinkStore store;
-    solver::LinkSet links(h, twin, store, nullptr, embree, scene.point_lights, nullptr, nullptr,
+    solver::LinkSet links(h, store, nullptr, embree, scene.point_lights, nullptr, nullptr,
                           settings);
     auto check = [&](const char* when) {
         const auto& all = store.links();

@@ -42,7 +42,6 @@ struct Pair {
     std::unique_ptr<solver::Hierarchy> h;
     solver::ClusterTree tree;
     solver::ClusterValues cv;
-    std::vector<std::int32_t> twin;
     std::unique_ptr<raytrace::EmbreeScene> embree;
     solver::LinkStore store;
     std::unique_ptr<solver::ClusterTables> tables;
@@ -59,15 +58,14 @@ struct Pair {
         h = std::make_unique<solver::Hierarchy>(mesh);
         tree = solver::build_cluster_tree(*h);
         solver::init_cluster_values(tree, *h, h->emission, cv);
-        twin = mesh.element_twin;
         embree = std::make_unique<raytrace::EmbreeScene>(mesh);
         solver::RefineSettings settings;
         settings.rows.visibility_rays = 16;
         settings.offset = 1e-5 * mesh.scene_diagonal;
         settings.min_area = min_area;
-        tables = std::make_unique<solver::ClusterTables>(
-            *h, twin, tree, cv.exitance, cv.exitance_emitted, cv.peak, cv.departure);
-        links = std::make_unique<solver::LinkSet>(*h, twin, store, tables.get(), *embree,
+        tables = std::make_unique<solver::ClusterTables>(*h, tree, cv.exitance, cv.exitance_emitted,
+                                                         cv.peak, cv.departure);
+        links = std::make_unique<solver::LinkSet>(*h, store, tables.get(), *embree,
                                                   scene.point_lights, nullptr, nullptr, settings);
         a = face_cluster(cross(ua, va));
         b = face_cluster(cross(ub, vb));

@@ -97,7 +97,7 @@ TEST_P(Occluders, CertifyOnlyBlockedShaftsAndMostAcrossAPartition) {
     bench::mesh_input_as_is(scene);
     const RadiosityMesh mesh = mesher::build_mesh(scene, test::quiet_context());
     const solver::Hierarchy h(mesh);
-    const solver::OccluderPlanes planes(h, mesh.element_twin);
+    const solver::OccluderPlanes planes(h);
     const raytrace::EmbreeScene embree(mesh);
 
     std::mt19937 rng(7);

@@ -60,7 +60,7 @@ struct Shafts {
 Shafts blocked(bool wall_opaque, bool pane_opaque) {
     const RadiosityMesh mesh = wall_with_pane(wall_opaque, pane_opaque);
     const solver::Hierarchy h(mesh);
-    const solver::OccluderPlanes planes(h, mesh.element_twin);
+    const solver::OccluderPlanes planes(h);
     EXPECT_EQ(planes.size(), 1u); // the pane lies in its wall's plane
     const std::uint32_t plane = planes.plane_of_root(0);
     EXPECT_EQ(planes.plane_of_root(3), plane);

@@ -98,10 +98,9 @@ struct Material {
     std::optional<double> emission_flux_lm;
     /// The non-diffuse part; no scene key sets it yet (issue #28).
     std::optional<Lobe> lobe;
-    /// Diffuse transmittance per channel, in [0, 1): the fraction of the light arriving on
-    /// either side that leaves the other side diffusely (Radiance's `trans`: blinds, diffusing
-    /// glass). Not transported yet: the scene loader refuses a material with a non-zero value
-    /// (issue #30).
+    /// Diffuse transmittance τ per channel: the fraction of the light arriving on either side
+    /// that leaves the other side diffusely (Radiance's `trans`: blinds, diffusing glass).
+    /// ρ + τ < 1 per channel; a material with τ > 0 is two-sided.
     Rgb diffuse_transmittance{};
 };
 
@@ -114,6 +113,8 @@ struct RadiosityResponse {
     bool emission_two_sided = false;
     /// Hemispherical transmittance of thin glass; 0 for every other material.
     Rgb transmittance;
+    /// Diffuse transmittance τ: a side's radiosity gains τ times the other side's irradiance.
+    Rgb diffuse_transmittance;
 
     /// Whether the surface blocks all light: visibility, occluders and hidden regions count
     /// only such surfaces.

@@ -24,7 +24,10 @@ struct Patch {
     bool back = false;          ///< the back side of a two-sided surface
     Vec3 normal;                ///< unit normal of this side
     Rgb reflectance;            ///< the material's diffuse reflectance (radiosity_response)
-    Rgb emission;               ///< emitted radiosity πL of this side, W/m²
+    /// The material's diffuse transmittance τ: this side's radiosity gains τ times the
+    /// irradiance of its twin (the other side).
+    Rgb diffuse_transmittance;
+    Rgb emission; ///< emitted radiosity πL of this side, W/m²
     /// The pane's optics when the surface is glazing (a ThinGlass material), which rays cross
     /// with its transmittance T(θ); none for every other surface.
     std::optional<ThinGlass> glazing;

@@ -27,7 +27,7 @@ struct PowerBalance {
     /// By emissive elements and point lights, and by the sun and the sky: the power their
     /// direct light delivers to the scene's surfaces (Σ E_direct A), none of which escapes.
     RgbD emitted;
-    RgbD absorbed; ///< Σ (1 − ρ) H A over opaque elements
+    RgbD absorbed; ///< Σ (1 − ρ − τ) H A over opaque elements (τ: diffuse transmittance)
     /// Leaving the scene through openings and (T(θ) of it) through glazing, estimated by
     /// its own rays.
     RgbD escaped;
@@ -39,7 +39,8 @@ struct PowerBalance {
     /// (emitted − absorbed − escaped − glazing − residual) / emitted, luminance-weighted.
     double relative_imbalance() const;
     /// \brief Books irradiance \p h (W/m²) on \p area m² of a surface of \p patch: absorbed
-    ///        by an opaque one (1 − ρ of it), glazing's for a pane.
+    ///        by an opaque one (1 − ρ − τ of it: the rest it reflects or passes to its other
+    ///        side), glazing's for a pane.
     void receive(const Patch& patch, const RgbD& h, double area);
 };
 

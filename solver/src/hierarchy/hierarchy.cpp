@@ -20,6 +20,8 @@ Hierarchy::Hierarchy(const RadiosityMesh& mesh) {
         level.push_back(0);
         emission.push_back(p.emission);
         reflectance.push_back(p.reflectance);
+        transmittance.push_back(p.diffuse_transmittance);
+        twin.push_back(mesh.element_twin[e]);
         opaque.push_back(p.opaque() ? 1 : 0);
     }
 }
@@ -46,8 +48,15 @@ void Hierarchy::subdivide(std::uint32_t n) {
         level.push_back(level[n] + 1);
         emission.push_back(emission[n]);
         reflectance.push_back(reflectance[n]);
+        transmittance.push_back(transmittance[n]);
+        twin.push_back(-1); // paired by LinkSet::subdivide, which splits the twin too
         opaque.push_back(opaque[n]);
     }
+}
+
+bool Hierarchy::any_transmittance() const {
+    return std::any_of(transmittance.begin(), transmittance.end(),
+                       [](const Rgb& t) { return !t.is_black(); });
 }
 
 std::vector<std::uint32_t> Hierarchy::root_of_nodes() const {

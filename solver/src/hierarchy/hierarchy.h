@@ -19,6 +19,12 @@ struct Hierarchy {
     std::vector<std::int32_t> first_child; ///< -1 for leaves; children are first_child + 0..3
     std::vector<std::int32_t> level;
     std::vector<Rgb> emission, reflectance;
+    /// Diffuse transmittance τ (Patch::diffuse_transmittance): a leaf's radiosity gains τ
+    /// times its twin's irradiance.
+    std::vector<Rgb> transmittance;
+    /// The other side's node of a two-sided surface, -1 if one-sided. Refinement subdivides
+    /// twins together (LinkSet), so the children of twins are twins.
+    std::vector<std::int32_t> twin;
     std::vector<std::uint8_t> opaque; ///< 1 where the surface blocks all light (Patch::opaque)
     std::size_t root_count = 0;
     double diagonal = 0;
@@ -28,6 +34,8 @@ struct Hierarchy {
     explicit Hierarchy(const RadiosityMesh& mesh);
     std::size_t size() const { return area.size(); }
     bool is_leaf(std::uint32_t n) const { return first_child[n] < 0; }
+    /// Whether any node passes light to its twin (a diffusely transmitting material).
+    bool any_transmittance() const;
     /// Creates the four children of leaf \p n (midpoint subdivision); no-op if it has them.
     void subdivide(std::uint32_t n);
     /// All leaves in depth-first order of the roots (deterministic).

@@ -61,8 +61,8 @@ double tri_area(const Vec3& a, const Vec3& b, const Vec3& c) {
 
 } // namespace
 
-LeafMesh build_leaf_mesh(const RadiosityMesh& base, const Hierarchy& h,
-                         const std::vector<std::int32_t>& twin) {
+LeafMesh build_leaf_mesh(const RadiosityMesh& base, const Hierarchy& h) {
+    const std::vector<std::int32_t>& twin = h.twin;
     LeafMesh out;
     RadiosityMesh& m = out.mesh;
     m.patches = base.patches;

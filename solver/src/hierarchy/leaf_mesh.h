@@ -16,9 +16,8 @@ struct LeafMesh {
     std::vector<std::uint32_t> element_node; ///< hierarchy node of each output element
 };
 
-/// \brief Builds the leaf mesh. Front and back leaves must be twins (subdivided together);
-///        \p twin maps nodes to their twins (-1 if one-sided).
-LeafMesh build_leaf_mesh(const RadiosityMesh& base, const Hierarchy& h,
-                         const std::vector<std::int32_t>& twin);
+/// \brief Builds the leaf mesh. Front and back leaves must be twins (subdivided together,
+///        Hierarchy::twin).
+LeafMesh build_leaf_mesh(const RadiosityMesh& base, const Hierarchy& h);
 
 } // namespace penumbra::solver

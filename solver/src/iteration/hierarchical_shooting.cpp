@@ -136,15 +136,30 @@ private:
         top_.set(r, p);
     }
 
-    // Irradiance \p e arrives at node \p q: it becomes ρ e of unshot radiosity when spread.
+    // Irradiance \p e arrives at node \p q: it becomes ρ e of unshot radiosity when spread,
+    // and τ e on the other side (counted here until then).
     void receive(std::uint32_t q, const Rgb& e, std::vector<Rgb>& pending) {
         pending[q] += e;
         const std::uint32_t r = root_of_[q];
-        set_power(r, power_[r] + h_.area[q] * magnitude(h_.reflectance[q] * e));
+        set_power(r, power_[r] +
+                         h_.area[q] * magnitude((h_.reflectance[q] + h_.transmittance[q]) * e));
+    }
+
+    // Leaf x's twin passes on τ ΔH: its radiosity and its tree's unshot power grow.
+    void transmit(std::uint32_t x, const Rgb& dh) {
+        const std::int32_t t = h_.twin[x];
+        if (t < 0 || h_.transmittance[x].is_black())
+            return;
+        const Rgb db = h_.transmittance[x] * dh;
+        v_.b[std::uint32_t(t)] += db;
+        unshot_[std::uint32_t(t)] += db;
+        const std::uint32_t r = root_of_[std::uint32_t(t)];
+        set_power(r, power_[r] + h_.area[std::uint32_t(t)] * magnitude(db));
     }
 
     // What tree r received, spread to its leaves (the links' part by the leaves' receive
-    // weights) and reflected: their radiosity and unshot radiosity grow by ρ ΔH.
+    // weights) and reflected: their radiosity and unshot radiosity grow by ρ ΔH, their
+    // twins' by τ ΔH.
     void flush(std::size_t r) {
         const bool weighted = !v_.weights.empty();
         const std::uint32_t begin = trees_.start[r], end = trees_.start[r + 1];
@@ -163,6 +178,7 @@ private:
             v_.b[x] += db;
             v_.h_indirect[x] += dh;
             unshot_[x] += db;
+            transmit(x, dh);
         }
         for (std::uint32_t i = begin; i < end; ++i) {
             pending_even_[trees_.nodes[i]] = Rgb{};

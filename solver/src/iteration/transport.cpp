@@ -59,6 +59,23 @@ void gather_node(const Hierarchy& h, const LinkStore& links, NodeValues& v,
     v.gathered_indirect[q] = v.link_indirect[q] + v.extra_indirect[q];
 }
 
+// What each leaf passes on from its other side: τ times its twin's irradiance of the last
+// sweep. Taken before the trees are swept in parallel (a twin lies in another tree, maybe of
+// the same block), so no tree reads a value another thread writes; the lag of one sweep is
+// one more step of the same fixed-point iteration.
+void take_transmitted(const Hierarchy& h, NodeValues& v) {
+    if (!h.any_transmittance()) {
+        v.transmitted.clear();
+        return;
+    }
+    v.transmitted.assign(h.size(), Rgb{});
+    parallel_for_index(h.size(), 1024, [&](std::size_t n) {
+        const std::int32_t t = h.twin[n];
+        if (t >= 0 && h.is_leaf(std::uint32_t(n)) && !h.transmittance[n].is_black())
+            v.transmitted[n] = h.transmittance[n] * (v.h_direct[t] + v.h_indirect[t]);
+    });
+}
+
 const std::vector<Rgb>& sent_radiosity(const Hierarchy& h, const NodeValues& v) {
     return v.b_emit.size() == h.size() ? v.b_emit : v.b;
 }
@@ -88,6 +105,8 @@ Rgb push_pull(const Hierarchy& h, NodeValues& v, std::uint32_t node, const Rgb& 
             hi += v.link_indirect[a] * extra;
         }
         b = h.emission[node] + h.reflectance[node] * (hd + hi);
+        if (!v.transmitted.empty())
+            b += v.transmitted[node];
         if (weighted)
             add_emit_shares(h, v, node, b);
         v.h_direct[node] = hd;
@@ -195,6 +214,7 @@ namespace {
 double sweep_gauss_seidel(const Hierarchy& h, const LinkStore& links, NodeValues& v,
                           Clusters& clusters, const TreeNodes& trees, double emitted) {
     size_values(h, v);
+    take_transmitted(h, v);
     gather_extra(h, links, v, clusters);
     const std::vector<Rgb>& b_source = sent_radiosity(h, v);
     std::vector<double> change(h.root_count, 0.0);
@@ -252,6 +272,7 @@ void pull_all(const Hierarchy& h, NodeValues& v) {
 double sweep_jacobi(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters,
                     double emitted) {
     size_values(h, v);
+    take_transmitted(h, v);
     gather_extra(h, links, v, clusters);
     const std::vector<Rgb>& b_source = sent_radiosity(h, v);
     parallel_for_index(h.size(), 256, [&](std::size_t q) {
@@ -294,8 +315,9 @@ Solved solve_links(const Hierarchy& h, const LinkStore& links, NodeValues& v, Cl
 }
 
 void release_sweep_values(NodeValues& v) {
-    for (std::vector<Rgb>* a : {&v.gathered_direct, &v.gathered_indirect, &v.link_direct,
-                                &v.link_indirect, &v.extra_direct, &v.extra_indirect, &v.b_emit})
+    for (std::vector<Rgb>* a :
+         {&v.gathered_direct, &v.gathered_indirect, &v.link_direct, &v.link_indirect,
+          &v.extra_direct, &v.extra_indirect, &v.b_emit, &v.transmitted})
         *a = {};
     v.b_lo = {};
     v.b_hi = {};

@@ -36,6 +36,9 @@ struct NodeValues {
     /// What each node sends through its element links: its leaves' radiosities by their emit
     /// weights (the leaf's own radiosity for a leaf).
     std::vector<Rgb> b_emit;
+    /// Per leaf, τ times its twin's irradiance of the last sweep (empty when no surface
+    /// transmits diffusely).
+    std::vector<Rgb> transmitted;
     LeafWeights weights;
 };
 

@@ -46,10 +46,9 @@ void ClusterTables::weigh_sources(const std::vector<Rgb>& b) {
     }
 }
 
-ClusterTables::ClusterTables(const Hierarchy& h, const std::vector<std::int32_t>& twin,
-                             const ClusterTree& tree, const std::vector<Lobes>& exitance,
-                             const std::vector<Lobes>& emitted, const std::vector<float>& peak,
-                             const std::vector<float>& departure)
+ClusterTables::ClusterTables(const Hierarchy& h, const ClusterTree& tree,
+                             const std::vector<Lobes>& exitance, const std::vector<Lobes>& emitted,
+                             const std::vector<float>& peak, const std::vector<float>& departure)
     : h_(h), tree_(&tree), exitance_(&exitance), emitted_(&emitted), peak_(&peak),
       departure_(&departure) {
     pull_lobes(tree, h_, std::vector<Rgb>(h_.root_count, Rgb(1.0f)), area_lobes_);
@@ -78,7 +77,7 @@ ClusterTables::ClusterTables(const Hierarchy& h, const std::vector<std::int32_t>
     }
     dfs_exitance_ = dfs_area_; // until refine() weighs the sources by their radiosity
     build_boundaries();
-    occluders_ = OccluderPlanes(h_, twin);
+    occluders_ = OccluderPlanes(h_);
     // Lobe bounds, children before parents (parents precede their children in the tree).
     constexpr float inf = std::numeric_limits<float>::infinity();
     lobe_bounds_.assign(tree.size(), {});

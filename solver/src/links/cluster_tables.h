@@ -28,8 +28,7 @@ public:
     /// and \p peak their brightest root's radiosity, read by the oracle at every refinement;
     /// \p emitted is their emitted exitance lobes (Σ E A cos): the oracle holds the direct
     /// light a link brings to a tighter bound than the reflected. All must outlive the tables.
-    ClusterTables(const Hierarchy& h, const std::vector<std::int32_t>& twin,
-                  const ClusterTree& tree, const std::vector<Lobes>& exitance,
+    ClusterTables(const Hierarchy& h, const ClusterTree& tree, const std::vector<Lobes>& exitance,
                   const std::vector<Lobes>& emitted, const std::vector<float>& peak,
                   const std::vector<float>& departure);
     ClusterTables(const ClusterTables&) = delete;

@@ -34,8 +34,10 @@ bool faces(const Hierarchy& h, std::uint32_t a, std::uint32_t b, double eps) {
            in_front(oriented(h, b), oriented(h, a), eps);
 }
 
+// A node that neither emits, reflects nor passes on light stays black.
 bool can_radiate(const Hierarchy& h, std::uint32_t n) {
-    return !h.emission[n].is_black() || !h.reflectance[n].is_black();
+    return !h.emission[n].is_black() || !h.reflectance[n].is_black() ||
+           !h.transmittance[n].is_black();
 }
 
 // Children of a twin are in mirrored order (the back winding is reversed): 0↔0, 1↔2, 3↔3.
@@ -43,11 +45,10 @@ constexpr int k_twin_child[4] = {0, 2, 1, 3};
 
 } // namespace
 
-LinkSet::LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, LinkStore& store,
-                 ClusterTables* tables, const VisibilityQuery& visibility,
-                 const std::vector<PointLight>& lights, const Sun* sun, const Sky* sky,
-                 RefineSettings settings)
-    : h_(h), twin_(twin), store_(store), links_(store.links_), light_links_(store.light_links_),
+LinkSet::LinkSet(Hierarchy& h, LinkStore& store, ClusterTables* tables,
+                 const VisibilityQuery& visibility, const std::vector<PointLight>& lights,
+                 const Sun* sun, const Sky* sky, RefineSettings settings)
+    : h_(h), store_(store), links_(store.links_), light_links_(store.light_links_),
       offsets_(store.offsets_), cluster_links_(store.cluster_links_), tables_(tables),
       tree_(tables ? tables->tree_ : nullptr), visibility_(visibility), lights_(lights), sun_(sun),
       sky_(sky), settings_(settings) {}
@@ -182,7 +183,7 @@ LightLink LinkSet::make_sky_link(std::uint32_t q) const {
 }
 
 bool LinkSet::linkable(std::uint32_t q, std::uint32_t p) const {
-    return p != q && twin_[q] != std::int32_t(p) && can_radiate(h_, p) &&
+    return p != q && h_.twin[q] != std::int32_t(p) && can_radiate(h_, p) &&
            faces(h_, q, p, 1e-9 * h_.diagonal);
 }
 
@@ -234,7 +235,7 @@ void LinkSet::subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<flo
     if (!h_.is_leaf(node))
         return;
     // Front and back sides subdivide together so that their leaves stay twins.
-    const std::int32_t t = twin_[node];
+    const std::int32_t t = h_.twin[node];
     for (std::uint32_t n : {node, t >= 0 ? std::uint32_t(t) : node}) {
         if (!h_.is_leaf(n))
             continue;
@@ -246,14 +247,13 @@ void LinkSet::subdivide(std::uint32_t node, std::vector<Rgb>& b, std::vector<flo
             b_range.push_back(parent_range);
         }
     }
-    twin_.resize(h_.size(), -1);
     if (t >= 0) {
         for (int c = 0; c < 4; ++c) {
             std::uint32_t mine = std::uint32_t(h_.first_child[node] + c);
             std::uint32_t theirs =
                 std::uint32_t(h_.first_child[std::uint32_t(t)] + k_twin_child[c]);
-            twin_[mine] = std::int32_t(theirs);
-            twin_[theirs] = std::int32_t(mine);
+            h_.twin[mine] = std::int32_t(theirs);
+            h_.twin[theirs] = std::int32_t(mine);
         }
     }
 }

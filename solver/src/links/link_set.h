@@ -39,11 +39,11 @@ struct RefinePass {
 
 /// \brief Makes and refines the links of \p store over hierarchy \p h (which refinement
 ///        subdivides), with the cluster tables \p tables when clustering (else null).
-///        Lives as long as refinement: \p h, \p twin, \p store, \p tables and \p sun
+///        Lives as long as refinement: \p h, \p store, \p tables and \p sun
 ///        (may be null) outlive it.
 class LinkSet {
 public:
-    LinkSet(Hierarchy& h, std::vector<std::int32_t>& twin, LinkStore& store, ClusterTables* tables,
+    LinkSet(Hierarchy& h, LinkStore& store, ClusterTables* tables,
             const VisibilityQuery& visibility, const std::vector<PointLight>& lights,
             const Sun* sun, const Sky* sky, RefineSettings settings);
 
@@ -249,7 +249,6 @@ private:
                             const std::vector<float>& b_range) const;
 
     Hierarchy& h_;
-    std::vector<std::int32_t>& twin_;
     LinkStore& store_;
     /// The store's links, which refinement rewrites in place.
     MappedArray<Link>& links_;

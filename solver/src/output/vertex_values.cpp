@@ -119,6 +119,50 @@ Vec3 gather_position(const RadiosityMesh& mesh, std::uint32_t v,
 // angle.
 constexpr double k_inset_offsets = 10.0;
 
+// Each vertex's counterpart on the other side of its surface: the twin element's corner at
+// the same place (twins share their corners' positions). -1 where the side has no twin.
+std::vector<std::int32_t> twin_vertices(const RadiosityMesh& mesh) {
+    std::vector<std::int32_t> out(mesh.vertex_count(), -1);
+    for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+        const std::int32_t t = mesh.element_twin[e];
+        if (t < 0)
+            continue;
+        for (std::uint32_t v : mesh.triangles[e]) {
+            double nearest = std::numeric_limits<double>::infinity();
+            for (std::uint32_t w : mesh.triangles[std::size_t(t)]) {
+                const double d = length(mesh.vertex(w) - mesh.vertex(v));
+                if (d < nearest) {
+                    nearest = d;
+                    out[v] = std::int32_t(w);
+                }
+            }
+        }
+    }
+    return out;
+}
+
+bool any_diffuse_transmittance(const RadiosityMesh& mesh) {
+    return std::any_of(mesh.patches.begin(), mesh.patches.end(),
+                       [](const Patch& p) { return !p.diffuse_transmittance.is_black(); });
+}
+
+// A side of a diffusely transmitting surface sends on τ times the irradiance of the other
+// side's vertex, once every vertex's own irradiance is known.
+void add_transmitted(const RadiosityMesh& mesh, Solution& sol) {
+    if (!any_diffuse_transmittance(mesh))
+        return;
+    const std::vector<std::int32_t> twin = twin_vertices(mesh);
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+        const Patch& patch = mesh.patches[mesh.vertex_patch[v]];
+        if (twin[v] < 0 || patch.diffuse_transmittance.is_black())
+            continue;
+        const auto t = std::size_t(twin[v]);
+        sol.vertex_radiosity[v] +=
+            patch.diffuse_transmittance *
+            (sol.vertex_irradiance_direct[t] + sol.vertex_irradiance_indirect[t]);
+    }
+}
+
 } // namespace
 
 std::vector<Vec3> vertex_gather_positions(const RadiosityMesh& mesh, double ray_offset) {
@@ -198,6 +242,7 @@ Solution make_solution(const Scene& scene, const RadiosityMesh& mesh, const Elem
         });
         progress.update(double(end) / double(nv));
     }
+    add_transmitted(mesh, sol);
     return sol;
 }
 

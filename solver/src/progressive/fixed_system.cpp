@@ -19,7 +19,17 @@ namespace penumbra::solver {
 namespace {
 
 bool can_radiate(const FixedSystem& s, std::size_t e) {
-    return !s.emission[e].is_black() || !s.reflectance[e].is_black();
+    return !s.emission[e].is_black() || !s.reflectance[e].is_black() ||
+           !s.transmittance[e].is_black();
+}
+
+// B_j from the irradiances of j and of its twin (what j's other side passes on).
+Rgb radiosity_of(const FixedSystem& s, const ElementResult& r, std::size_t j) {
+    Rgb b = s.emission[j] + s.reflectance[j] * (r.h_direct[j] + r.h_indirect[j]);
+    const std::int32_t t = s.twin[j];
+    if (t >= 0 && !s.transmittance[j].is_black())
+        b += s.transmittance[j] * (r.h_direct[std::size_t(t)] + r.h_indirect[std::size_t(t)]);
+    return b;
 }
 
 double emitted_power_sum(const FixedSystem& s, const ElementGeometry& geo) {
@@ -53,6 +63,8 @@ FixedSystem build_fixed_system(const Scene& scene, const RadiosityMesh& mesh,
     ShootingState lights(mesh);
     s.emission = lights.emission;
     s.reflectance = lights.reflectance;
+    s.transmittance = lights.transmittance;
+    s.twin = lights.twin;
     shoot_point_lights(lights, geo, scene.point_lights, visibility, settings, ctx);
     for (const PointLight& l : scene.point_lights)
         s.light_emitted += l.power();
@@ -104,19 +116,22 @@ ElementResult solve_gathering(const FixedSystem& s, const ElementGeometry& geo,
     double relative = 1;
     int sweep = 0;
     for (; sweep < settings.max_sweeps && relative > settings.residual; ++sweep) {
-        auto update = [&](std::size_t j, std::vector<Rgb>& out) {
-            gather_one(s, r.radiosity, j, r.h_direct[j], r.h_indirect[j]);
-            out[j] = s.emission[j] + s.reflectance[j] * (r.h_direct[j] + r.h_indirect[j]);
-            change[j] = double((out[j] - r.radiosity[j]).sum());
-        };
         if (gauss_seidel) {
             for (std::size_t j = 0; j < n; ++j) {
-                Rgb old = r.radiosity[j];
-                update(j, r.radiosity);
+                const Rgb old = r.radiosity[j];
+                gather_one(s, r.radiosity, j, r.h_direct[j], r.h_indirect[j]);
+                r.radiosity[j] = radiosity_of(s, r, j);
                 change[j] = double((r.radiosity[j] - old).sum());
             }
         } else {
-            parallel_for_index(n, 256, [&](std::size_t j) { update(j, next); });
+            // All irradiances first: B_j reads its twin's.
+            parallel_for_index(n, 256, [&](std::size_t j) {
+                gather_one(s, r.radiosity, j, r.h_direct[j], r.h_indirect[j]);
+            });
+            parallel_for_index(n, 256, [&](std::size_t j) {
+                next[j] = radiosity_of(s, r, j);
+                change[j] = double((next[j] - r.radiosity[j]).sum());
+            });
             r.radiosity.swap(next);
         }
         double changed = 0;
@@ -149,11 +164,17 @@ ElementResult solve_matrix(const FixedSystem& s, const ElementGeometry& geo, con
     for (int c = 0; c < 3; ++c) {
         Eigen::MatrixXd a = Eigen::MatrixXd::Identity(Eigen::Index(n), Eigen::Index(n));
         Eigen::VectorXd rhs = Eigen::VectorXd::Zero(Eigen::Index(n));
+        // Row j: B_j − ρ_j (L + K B)_j − τ_j (L + K B)_twin(j) = E_j.
+        auto add_irradiance = [&](std::size_t j, std::size_t from, double weight) {
+            rhs[Eigen::Index(j)] += weight * s.light_direct[from][c];
+            for (std::uint32_t k = s.offset[from]; k < s.offset[from + 1]; ++k)
+                a(Eigen::Index(j), Eigen::Index(s.source[k])) -= weight * double(s.k[k]);
+        };
         for (std::size_t j = 0; j < n; ++j) {
-            const double rho = s.reflectance[j][c];
-            rhs[Eigen::Index(j)] = s.emission[j][c] + rho * s.light_direct[j][c];
-            for (std::uint32_t k = s.offset[j]; k < s.offset[j + 1]; ++k)
-                a(Eigen::Index(j), Eigen::Index(s.source[k])) -= rho * double(s.k[k]);
+            rhs[Eigen::Index(j)] = s.emission[j][c];
+            add_irradiance(j, j, s.reflectance[j][c]);
+            if (s.twin[j] >= 0 && s.transmittance[j][c] > 0)
+                add_irradiance(j, std::size_t(s.twin[j]), s.transmittance[j][c]);
         }
         Eigen::VectorXd b = a.partialPivLu().solve(rhs);
         for (std::size_t j = 0; j < n; ++j)

@@ -1,5 +1,6 @@
 #pragma once
-// The radiosity system on fixed elements, B = E + ρ (L + K B), with K_ji = F_ij A_i / A_j
+// The radiosity system on fixed elements, B = E + ρ (L + K B) + τ (L + K B)_twin (τ the
+// diffuse transmittance, twin the other side's element), with K_ji = F_ij A_i / A_j
 // assembled from the shooting rows (so shooting, Jacobi, Gauss–Seidel and the dense matrix
 // solve all solve the same system), and its gathering and direct solvers.
 
@@ -20,7 +21,8 @@ struct FixedSystem {
     std::vector<std::uint32_t> source;
     std::vector<float> k;       ///< K_ji
     std::vector<double> escape; ///< per source element, fraction of its power escaping
-    std::vector<Rgb> emission, reflectance;
+    std::vector<Rgb> emission, reflectance, transmittance;
+    std::vector<std::int32_t> twin;      ///< the other side's element, -1 if one-sided
     std::vector<Rgb> light_direct;       ///< irradiance from point lights, per element
     RgbD light_emitted, light_escaped;   ///< W
     const RadiosityMesh* mesh = nullptr; ///< outlives the system
@@ -38,7 +40,8 @@ ElementResult solve_gathering(const FixedSystem& system, const ElementGeometry& 
                               const SolverSettings& settings, bool gauss_seidel, const Context& ctx,
                               SolveStats* stats);
 
-/// \brief Dense LU (Eigen) of (I − ρK) B = E + ρL per channel. For small scenes and tests.
+/// \brief Dense LU (Eigen) of (I − ρK − τK_twin) B = E + ρL + τL_twin per channel. For small
+///        scenes and tests.
 /// \throws ConfigError above 6000 elements.
 ElementResult solve_matrix(const FixedSystem& system, const ElementGeometry& geo,
                            const Context& ctx, SolveStats* stats);

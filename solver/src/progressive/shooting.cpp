@@ -38,10 +38,13 @@ ShootingState::ShootingState(const RadiosityMesh& mesh) {
     const std::size_t n = mesh.element_count();
     emission.resize(n);
     reflectance.resize(n);
+    transmittance.resize(n);
+    twin = mesh.element_twin;
     for (std::size_t e = 0; e < n; ++e) {
         const Patch& patch = mesh.patch_of(std::uint32_t(e));
         emission[e] = patch.emission;
         reflectance[e] = patch.reflectance;
+        transmittance[e] = patch.diffuse_transmittance;
         emitted += RgbD(patch.emission) * mesh.element_area[e];
     }
     radiosity = emission;
@@ -101,12 +104,25 @@ double shoot_element(ShootingState& s, const ElementGeometry& geo, const Row& ro
         std::uint32_t j = row.receiver[k];
         float scale = float(double(row.form_factor[k]) * geo.area[i] / geo.area[j]);
         Rgb before = s.unshot_reflected[j];
-        s.receive(j, ue * scale, ur * scale);
+        s.reflect(j, ue * scale, ur * scale);
         reflected[k] = double((s.unshot_reflected[j] - before).sum()) * geo.area[j];
     });
+    // The receivers' twins in a second pass: a twin may be another receiver's slot.
+    std::vector<double> passed(m, 0.0);
+    parallel_for_index(m, 512, [&](std::size_t k) {
+        const std::uint32_t j = row.receiver[k];
+        const std::int32_t t = s.twin[j];
+        if (t < 0 || s.transmittance[j].is_black())
+            return;
+        const float scale = float(double(row.form_factor[k]) * geo.area[i] / geo.area[j]);
+        const Rgb before = s.unshot_reflected[std::size_t(t)];
+        s.transmit(j, (ue + ur) * scale);
+        passed[k] =
+            double((s.unshot_reflected[std::size_t(t)] - before).sum()) * geo.area[std::size_t(t)];
+    });
     double added = 0;
-    for (double r : reflected)
-        added += r;
+    for (std::size_t k = 0; k < m; ++k)
+        added += reflected[k] + passed[k];
     return added - shot_power_rgb;
 }
 
@@ -218,7 +234,7 @@ void PowerBalance::receive(const Patch& patch, const RgbD& h, double area) {
         glazing += RgbD(h.r * kept.r, h.g * kept.g, h.b * kept.b) * area;
         return;
     }
-    const RgbD a = RgbD(1, 1, 1) - RgbD(patch.reflectance);
+    const RgbD a = RgbD(1, 1, 1) - RgbD(patch.reflectance) - RgbD(patch.diffuse_transmittance);
     absorbed += RgbD(h.r * a.r, h.g * a.g, h.b * a.b) * area;
 }
 

@@ -186,6 +186,7 @@ void shoot_point_lights(ShootingState& state, const ElementGeometry& geo,
         const RgbD power = light.power();
         state.emitted += power;
         state.escaped += power * light_escape_fraction(geo, visibility, light, id, settings.seed);
+        std::vector<Rgb> received(geo.size());
         parallel_for_index(geo.size(), 64, [&](std::size_t j) {
             if (dot(p - geo.triangle[j][0], geo.normal[j]) <= 0)
                 return; // the light is behind this side
@@ -193,8 +194,12 @@ void shoot_point_lights(ShootingState& state, const ElementGeometry& geo,
             if (omega <= 0)
                 return; // outside a spot's cone
             omega *= visible_fraction(geo, visibility, p, id, std::uint32_t(j), settings);
-            state.receive(j, light.intensity * float(omega / geo.area[j]), Rgb{});
+            received[j] = light.intensity * float(omega / geo.area[j]);
         });
+        // Serially: a receiver passes light on to its twin, another receiver's slot.
+        for (std::size_t j = 0; j < received.size(); ++j)
+            if (!received[j].is_black())
+                state.receive(j, received[j], Rgb{});
         ctx.debug("point light '{}' shot", light.name);
     }
 }

@@ -158,7 +158,7 @@ void write_hierarchical_state(const HierarchicalState& s, const std::string& pat
         w.vec(h.parent);
         w.vec(h.first_child);
         w.vec(h.level);
-        w.vec(s.twin);
+        w.vec(h.twin);
         w.vec(s.links.span());
         w.vec(s.cluster_links.span());
         w.vec(s.radiosity);
@@ -202,7 +202,7 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
     h.parent = r.vec<std::int32_t>();
     h.first_child = r.vec<std::int32_t>();
     h.level = r.vec<std::int32_t>();
-    s->twin = r.vec<std::int32_t>();
+    h.twin = r.vec<std::int32_t>();
     r.vec(s->links);
     r.vec(s->cluster_links);
     s->radiosity = r.vec<Rgb>();
@@ -228,10 +228,10 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
                               return false;
                       return true;
                   }();
-    const bool consistent =
-        h.normal.size() == n && h.area.size() == n && h.patch.size() == n && h.parent.size() == n &&
-        h.first_child.size() == n && h.level.size() == n && s->twin.size() == n &&
-        s->radiosity.size() == n && h.root_count <= n && weights_consistent && r.done();
+    const bool consistent = h.normal.size() == n && h.area.size() == n && h.patch.size() == n &&
+                            h.parent.size() == n && h.first_child.size() == n &&
+                            h.level.size() == n && h.twin.size() == n && s->radiosity.size() == n &&
+                            h.root_count <= n && weights_consistent && r.done();
     if (!consistent)
         r.fail("inconsistent sizes");
     const auto in_range = [n](std::uint32_t node) { return node < n; };
@@ -240,6 +240,7 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
             r.fail("link to a missing node");
     h.emission.assign(n, Rgb{});
     h.reflectance.assign(n, Rgb{});
+    h.transmittance.assign(n, Rgb{});
     h.opaque.assign(n, 1);
     return s;
 }

@@ -22,7 +22,6 @@ struct HierarchicalState {
     std::uint64_t mesh_hash = 0; ///< of the input mesh's geometry (mesh_geometry_hash)
     bool clustered = false;
     Hierarchy hierarchy;
-    std::vector<std::int32_t> twin;
     MappedArray<Link> links;
     MappedArray<ClusterLink> cluster_links;
     std::vector<Rgb> radiosity; ///< per node

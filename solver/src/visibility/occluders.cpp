@@ -67,7 +67,8 @@ bool clip_to_half_plane(double f0, double df, double& t0, double& t1) {
 
 } // namespace
 
-OccluderPlanes::OccluderPlanes(const Hierarchy& h, const std::vector<std::int32_t>& twin) {
+OccluderPlanes::OccluderPlanes(const Hierarchy& h) {
+    const std::vector<std::int32_t>& twin = h.twin;
     const std::size_t n = h.root_count;
     const double diagonal = std::max(h.diagonal, 1e-9);
     tolerance_ = 1e-6 * diagonal;

@@ -24,8 +24,8 @@ class OccluderPlanes {
 public:
     OccluderPlanes() = default;
     /// The planes of the roots of \p h, each with the union of its opaque roots' triangles;
-    /// a two-sided surface (root r with twin[r] >= 0) counts once.
-    OccluderPlanes(const Hierarchy& h, const std::vector<std::int32_t>& twin);
+    /// a two-sided surface (root r with h.twin[r] >= 0) counts once.
+    explicit OccluderPlanes(const Hierarchy& h);
 
     std::size_t size() const { return planes_.size(); }
     /// The plane root \p r lies in (also for a root that does not occlude).

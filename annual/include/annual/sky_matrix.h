@@ -52,9 +52,9 @@ struct SkyMatrix {
 
 /// \brief The sky vectors and suns of every hour of \p weather over \p patches: each hour's
 ///        sky by perez_sky_and_sun() (sharp horizon, the sun at mid-hour), each patch's mean
-///        radiance by a Gauss–Legendre rule over its altitude and azimuth bounds (9 280
-///        directions over the sky for MF 1 and 2, 20 800 for MF 4; within 3e-4 of the exact
-///        mean). Hours run in parallel in the context's
+///        radiance by a Gauss–Legendre rule over its altitude and azimuth bounds, finer near
+///        the sun (about 2 600 directions over the sky for MF 1, 9 300 for MF 4; within 3e-4
+///        of the exact mean). Hours run in parallel in the context's
 ///        arena; the result does not depend on the thread count.
 /// \throws InputError for an hour whose illuminance fields are missing (WeatherInput::
 ///         illuminance); ConfigError for a ground reflectance outside [0, 1].

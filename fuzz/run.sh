@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fuzzes one target for a while: fuzz/run.sh TARGET SECONDS [libFuzzer options...]
-# TARGET is scene_json, pts, rad or solver_state. Builds the libFuzzer binaries with clang
+# TARGET is scene_json, pts, rad, solver_state or epw. Builds the libFuzzer binaries with clang
 # (not installed by scripts/setup.sh: apt-get install clang) in build-fuzz/, then fuzzes from
 # a copy of the checked-in corpus, fuzz/corpus/TARGET/, in build-fuzz/corpus/TARGET/. A finding
 # is written to build-fuzz/findings/; fix it, then add it to fuzz/corpus/TARGET/ so that the

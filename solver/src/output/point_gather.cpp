@@ -161,6 +161,30 @@ Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
     return Rgb(float(sum.r), float(sum.g), float(sum.b));
 }
 
+std::vector<ElementWeight> element_weights(const ElementGeometry& geo,
+                                           const std::vector<std::uint8_t>& candidate,
+                                           const VisibilityQuery& visibility, const GatherPoint& p,
+                                           int rays_per_element, std::uint64_t seed) {
+    Pcg32 rng = Pcg32::for_stream(p.purpose, p.id, 2, 0, seed);
+    std::vector<std::uint32_t> facing;
+    std::vector<double> f, visible;
+    for (std::uint32_t s = 0; s < geo.size(); ++s) {
+        if (!candidate[s])
+            continue;
+        const double fs = facing_form_factor(geo, p, s);
+        if (fs <= 0)
+            continue;
+        facing.push_back(s);
+        f.push_back(fs);
+    }
+    triangle_visibilities(geo, visibility, p, facing, rays_per_element, rng, visible);
+    std::vector<ElementWeight> out;
+    for (std::size_t i = 0; i < facing.size(); ++i)
+        if (f[i] * visible[i] > 0)
+            out.push_back({facing[i], f[i] * visible[i]});
+    return out;
+}
+
 Rgb gather_elements(const ElementGeometry& geo, const std::vector<Rgb>& exitance,
                     const VisibilityQuery& visibility, const GatherPoint& p, int rays_per_element,
                     std::uint64_t seed) {

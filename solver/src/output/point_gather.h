@@ -41,6 +41,20 @@ Rgb gather_direct(const ElementGeometry& geo, const GatherSources& sources,
                   const VisibilityQuery& visibility, const GatherPoint& p, int rays_per_source,
                   std::uint64_t seed, const std::vector<std::uint32_t>* emitters = nullptr);
 
+/// \brief An element's share of a point's irradiance: form factor times visibility.
+struct ElementWeight {
+    std::uint32_t element = 0;
+    double weight = 0;
+};
+
+/// \brief The weights by which gather_elements sums the exitances of the elements marked in
+///        \p candidate (the same form factors, the same visibility rays): to gather many
+///        exitances at one point (daylight coefficients).
+std::vector<ElementWeight> element_weights(const ElementGeometry& geo,
+                                           const std::vector<std::uint8_t>& candidate,
+                                           const VisibilityQuery& visibility, const GatherPoint& p,
+                                           int rays_per_element, std::uint64_t seed);
+
 /// \brief Irradiance (W/m²) at \p p from every element's radiance \p exitance (W/m²),
 ///        excluding nothing; pass reflected radiosity B − E for the indirect part.
 Rgb gather_elements(const ElementGeometry& geo, const std::vector<Rgb>& exitance,

@@ -99,11 +99,13 @@ private:
     std::unordered_map<std::int64_t, CellSight> sight_;
 };
 
-} // namespace
-
-RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, double diagonal,
-                          const VisibilityQuery& visibility, const SkyQuadrature& quadrature,
-                          Pcg32& rng) {
+// Calls \p settle(dirs, radiance, t, k, weight) for each final cell k: its four samples are
+// dirs[4k..4k+3] with the sky's radiance and the transmittance to it, and weight the
+// projected solid angle of each sample's share of the cell.
+template <typename Settle>
+void integrate_cells(const Sky& sky, const Vec3& from, const Vec3& n, double diagonal,
+                     const VisibilityQuery& visibility, const SkyQuadrature& quadrature, Pcg32& rng,
+                     Settle&& settle) {
     const Frame frame = Frame::from_normal(n);
     const float reach = distant_reach(diagonal);
     const Vec3f origin(from);
@@ -116,7 +118,6 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
     std::vector<Rgb> radiance;
     std::vector<float> t;
     std::vector<CellSight> sights;
-    RgbD sum;
     for (int depth = 0; !cells.empty(); ++depth) {
         const std::int64_t side = std::int64_t(quadrature.side) << depth;
         const double d = 1.0 / double(side);
@@ -149,14 +150,40 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
                         finer.push_back({2 * c.i + a, 2 * c.j + b});
                 continue;
             }
-            RgbD cell;
-            for (std::size_t s = 4 * k; s < 4 * k + 4; ++s)
-                cell += RgbD(radiance[s]) * double(t[s]);
-            sum += cell * (k_pi * d * d / 4.0);
+            settle(dirs, radiance, t, k, k_pi * d * d / 4.0);
         }
         cells.swap(finer);
     }
+}
+
+} // namespace
+
+RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, double diagonal,
+                          const VisibilityQuery& visibility, const SkyQuadrature& quadrature,
+                          Pcg32& rng) {
+    RgbD sum;
+    integrate_cells(sky, from, n, diagonal, visibility, quadrature, rng,
+                    [&](const std::vector<Vec3>&, const std::vector<Rgb>& radiance,
+                        const std::vector<float>& t, std::size_t k, double weight) {
+                        RgbD cell;
+                        for (std::size_t s = 4 * k; s < 4 * k + 4; ++s)
+                            cell += RgbD(radiance[s]) * double(t[s]);
+                        sum += cell * weight;
+                    });
     return sum;
+}
+
+void sky_point_samples(const Sky& sky, const Vec3& from, const Vec3& n, double diagonal,
+                       const VisibilityQuery& visibility, const SkyQuadrature& quadrature,
+                       Pcg32& rng, std::vector<SkySample>& out) {
+    out.clear();
+    integrate_cells(sky, from, n, diagonal, visibility, quadrature, rng,
+                    [&](const std::vector<Vec3>& dirs, const std::vector<Rgb>& radiance,
+                        const std::vector<float>& t, std::size_t k, double weight) {
+                        for (std::size_t s = 4 * k; s < 4 * k + 4; ++s)
+                            if (t[s] > 0)
+                                out.push_back({dirs[s], radiance[s], double(t[s]) * weight});
+                    });
 }
 
 Rgb sky_triangle_irradiance(const Sky& sky, const OrientedTriangle& target, double offset,

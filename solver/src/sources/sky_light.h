@@ -44,6 +44,21 @@ RgbD sky_point_irradiance(const Sky& sky, const Vec3& from, const Vec3& n, doubl
                           const VisibilityQuery& visibility, const SkyQuadrature& quadrature,
                           Pcg32& rng);
 
+/// \brief One sample of a sky integral: the sky's radiance in \p direction counts with
+///        \p weight = T times its share of projected solid angle (sr).
+struct SkySample {
+    Vec3 direction;
+    Rgb radiance;
+    double weight = 0;
+};
+
+/// \brief The samples whose Σ radiance × weight sky_point_irradiance returns (the same
+///        cells, the same rays for the same \p rng), those with T > 0 only: to bin the
+///        integral by direction (daylight coefficients). Replaces \p out's contents.
+void sky_point_samples(const Sky& sky, const Vec3& from, const Vec3& n, double diagonal,
+                       const VisibilityQuery& visibility, const SkyQuadrature& quadrature,
+                       Pcg32& rng, std::vector<SkySample>& out);
+
 /// \brief The sky's irradiance on \p target: at its centroid lifted by \p offset, with
 ///        k_sky_element_quadrature and the stream (sky_visibility, key, 0, 0, seed). One point
 ///        (not a rule over the triangle): the links' values only feed interreflection, which

@@ -1,0 +1,131 @@
+// Annual daylight through coefficients (issue #31) against direct solves of the same hours'
+// skies and suns (the daylight path of issue #30), in a glazed room with the Chicago weather.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "app/annual.h"
+#include "common/bake_util.h"
+#include "common/test_util.h"
+
+namespace penumbra {
+namespace {
+
+using test::add_material;
+using test::add_rect;
+
+const char* const k_weather = "data/weather/chicago_ohare_tmy3.epw";
+
+// A 4 × 3 × 2.5 m room with a 1.6 × 1 m pane in its wall y = 0, which faces south (north is
+// +y), and a 3 × 2 grid of work-plane sensors.
+Scene glazed_room() {
+    Scene scene;
+    auto grey = add_material(scene, "grey", Rgb(0.5f));
+    Material glass;
+    glass.name = "glass";
+    glass.reflectance = Rgb(0);
+    glass.lobe = ThinGlass{Rgb(0.762842f), 1.52};
+    scene.materials.push_back(glass);
+    const auto pane = std::uint32_t(scene.materials.size() - 1);
+    add_rect(scene, "floor", grey, {0, 0, 0}, {4, 0, 0}, {0, 3, 0});
+    add_rect(scene, "ceiling", grey, {0, 0, 2.5}, {0, 3, 0}, {4, 0, 0});
+    add_rect(scene, "wall_x0", grey, {0, 0, 0}, {0, 3, 0}, {0, 0, 2.5});
+    add_rect(scene, "wall_x4", grey, {4, 0, 0}, {0, 0, 2.5}, {0, 3, 0});
+    add_rect(scene, "wall_y3", grey, {0, 3, 0}, {4, 0, 0}, {0, 0, 2.5});
+    add_rect(scene, "sill", grey, {0, 0, 0}, {0, 0, 0.8}, {4, 0, 0});
+    add_rect(scene, "lintel", grey, {0, 0, 1.8}, {0, 0, 0.7}, {4, 0, 0});
+    add_rect(scene, "jamb_w", grey, {0, 0, 0.8}, {0, 0, 1}, {1.2, 0, 0});
+    add_rect(scene, "jamb_e", grey, {2.8, 0, 0.8}, {0, 0, 1}, {1.2, 0, 0});
+    add_rect(scene, "pane", pane, {1.2, 0, 0.8}, {0, 0, 1}, {1.6, 0, 0});
+    for (double x : {1.0, 2.0, 3.0})
+        for (double y : {0.8, 2.0})
+            scene.sensors.push_back({"s", {x, y, 0.85}, {0, 0, 1}});
+    scene.mesher.max_edge_length = 0.5;
+    scene.solver.residual = 1e-4;
+    return scene;
+}
+
+// Hours of the file chosen by their weather: the most overcast noon (no direct light, most
+// diffuse), the clearest winter noon (most direct normal, sun low into the window), and an
+// intermediate one (direct and diffuse both between 150 and 350 W/m²).
+std::vector<std::size_t> chosen_hours(const annual::Weather& w) {
+    std::size_t overcast = 0, clear = 0, intermediate = 0;
+    double most_diffuse = -1, most_direct = -1, best_mix = 1e30;
+    for (std::size_t i = 0; i < w.hours.size(); ++i) {
+        const annual::WeatherHour& h = w.hours[i];
+        if (h.hour < 11 || h.hour > 14)
+            continue;
+        if (h.direct_normal_w_m2 == 0 && h.diffuse_horizontal_w_m2 > most_diffuse) {
+            most_diffuse = h.diffuse_horizontal_w_m2;
+            overcast = i;
+        }
+        if ((h.month == 1 || h.month == 12) && h.direct_normal_w_m2 > most_direct) {
+            most_direct = h.direct_normal_w_m2;
+            clear = i;
+        }
+        const double mix =
+            std::abs(h.direct_normal_w_m2 - 250) + std::abs(h.diffuse_horizontal_w_m2 - 250);
+        if (mix < best_mix) {
+            best_mix = mix;
+            intermediate = i;
+        }
+    }
+    return {overcast, clear, intermediate};
+}
+
+// The hour's sky and sun as `penumbra daylight` would solve them.
+Scene scene_of_hour(const Scene& room, const annual::Weather& w, std::size_t i,
+                    const annual::SkyPatches& patches) {
+    const annual::WeatherHour& h = w.hours[i];
+    const SolarAngles angles = annual::sun_position(w, i);
+    const Vec3 sun = patches.compass().direction(angles.altitude_deg, angles.azimuth_deg);
+    const PerezSkyAndSun hour =
+        perez_sky_and_sun(SolarIrradiance{h.direct_normal_w_m2, h.diffuse_horizontal_w_m2},
+                          patches.compass(), sun, annual::day_of_year(w, i), 0.2);
+    Scene scene = room;
+    scene.sky = hour.sky;
+    if (hour.sun)
+        scene.sun = *hour.sun;
+    return scene;
+}
+
+void expect_coefficients_match_direct_solves(int subdivision, double relative, double lx) {
+    const Scene room = glazed_room();
+    app::AnnualOptions options;
+    options.weather_file = test::source_path(k_weather);
+    options.subdivision = subdivision;
+    options.sun_subdivision = std::max(2, subdivision);
+    const app::AnnualResult year = app::run_annual(room, options, test::quiet_context());
+    const annual::SkyPatches patches(subdivision);
+    for (std::size_t i : chosen_hours(year.weather)) {
+        const app::BakeResult direct = test::bake(scene_of_hour(room, year.weather, i, patches));
+        for (std::size_t s = 0; s < room.sensors.size(); ++s) {
+            const double want = direct.sensors[s].illuminance_total_lx;
+            const double got = year.illuminance_lx(Eigen::Index(s), Eigen::Index(i));
+            std::printf("MF %d hour %zu sensor %zu: coefficients %.1f lx, direct %.1f lx "
+                        "(%+.2f %%)\n",
+                        subdivision, i, s, got, want, 100 * (got / want - 1));
+            EXPECT_NEAR(got, want, std::max(relative * want, lx))
+                << "MF " << subdivision << ", hour " << i << ", sensor " << s;
+        }
+    }
+}
+
+// Issue #31: within 5 % or 10 lx with Tregenza's 145 patches.
+TEST(AnnualCoefficients, TregenzaPatchesMatchDirectSolves) {
+    expect_coefficients_match_direct_solves(1, 0.05, 10);
+}
+
+} // namespace
+} // namespace penumbra
+namespace penumbra {
+namespace {
+// Issue #31: within 1 % with Reinhart's MF 4 patches.
+TEST(AnnualCoefficients, ReinhartPatchesMatchDirectSolves) {
+    expect_coefficients_match_direct_solves(4, 0.01, 0);
+}
+} // namespace
+} // namespace penumbra

@@ -1,9 +1,14 @@
+// The outputs of `penumbra annual`: one table of metrics (annual_metrics()) drives the columns
+// of annual.csv, the plans and the arrays of the .vtp, so that the three always agree.
+
 #include "annual_outputs.h"
 
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <span>
 
 #include <fmt/format.h>
 

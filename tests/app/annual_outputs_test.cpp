@@ -62,9 +62,9 @@ Scene small_scene() {
     return scene;
 }
 
-/// A year of 2025 (365 days), hour-ending records 1 … 24.
-annual::Weather calendar_year() {
-    const int days[12]{31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+/// A year of 365 days (366 with \p leap), hour-ending records 1 … 24.
+annual::Weather calendar_year(bool leap = false) {
+    const int days[12]{31, leap ? 29 : 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
     annual::Weather weather;
     weather.file = "synthetic.epw";
     for (int m = 1; m <= 12; ++m)
@@ -288,6 +288,26 @@ TEST_F(AnnualOutputs, HeatMapCellHasTheColourOfItsHoursValue) {
     const auto [xn, yn] = layout.cell(100, 3);
     EXPECT_EQ(png.at(xn + 1, yn + 5), viridis(0));
     EXPECT_GT(distinct_colours(png), 10u);
+}
+
+// With 29 February the map has 366 columns: 29 February is day 60, 31 December day 366.
+TEST(HeatMap, LeapYearHas366Days) {
+    const annual::Weather weather = calendar_year(true);
+    ASSERT_EQ(weather.hours.size(), 8784u);
+    std::vector<float> lx(weather.hours.size(), 0);
+    lx[59 * 24 + 11] = 1000; // 29 February, hour 12
+    lx[365 * 24 + 11] = 100; // 31 December, hour 12
+    const Canvas canvas = draw_heat_map(weather, lx, {"leap", ""});
+    const HeatMapLayout layout = HeatMapLayout::of(366);
+    EXPECT_EQ(canvas.width(), layout.width);
+    EXPECT_EQ(layout.map_width, 732);
+    const ColourScale scale = heat_map_scale(1000); // 1 … 1000 lx in 1-2-5 levels
+    const auto [x, y] = layout.cell(60, 12);
+    EXPECT_EQ(canvas.at(x, y), viridis(1));
+    EXPECT_EQ(canvas.at(x - 1, y), viridis(0)); // 28 February
+    const auto [xe, ye] = layout.cell(366, 12);
+    EXPECT_EQ(canvas.at(xe + 1, ye), scale.colour(100));
+    EXPECT_NEAR(scale.fraction(100), 2.0 / 3, 1e-12);
 }
 
 vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& path) {

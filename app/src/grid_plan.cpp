@@ -140,14 +140,20 @@ void draw_outline_and_points(Canvas& canvas, const PlanLayout& layout, const Sen
             }
 }
 
-/// The colour bar from the scale's bottom to its top, a tick and a number at every level.
-void draw_legend(Canvas& canvas, const PlanLayout& layout, const ColourScale& scale) {
-    const int x = layout.bar_x, top = layout.bar_y, height = layout.bar_height;
+void draw_title(Canvas& canvas, const PlanTitle& title) {
+    const int x = PlanLayout::k_margin;
+    canvas.text(x, PlanLayout::k_margin, title.heading, k_text_scale, k_ink);
+    canvas.text(x, PlanLayout::k_margin + 22, title.statistics, k_text_scale, k_ink);
+}
+
+} // namespace
+
+void draw_colour_bar(Canvas& canvas, int x, int top, int width, int height,
+                     const ColourScale& scale) {
     for (int i = 0; i < height; ++i)
-        canvas.fill(x, top + i, x + PlanLayout::k_bar_width, top + i + 1,
-                    viridis((height - i - 0.5) / height));
+        canvas.fill(x, top + i, x + width, top + i + 1, viridis((height - i - 0.5) / height));
     const int text_height = Canvas::text_height(k_text_scale);
-    const int tick_x = x + PlanLayout::k_bar_width;
+    const int tick_x = x + width;
     for (double level : scale.levels) {
         const int y = top + height - int(std::lround(scale.fraction(level) * height));
         canvas.fill(tick_x, y - 1, tick_x + 6, y + 1, k_ink);
@@ -155,21 +161,6 @@ void draw_legend(Canvas& canvas, const PlanLayout& layout, const ColourScale& sc
                     k_ink);
     }
 }
-
-void draw_title(Canvas& canvas, const SensorGrid& grid, const std::vector<double>& values,
-                const PlanQuantity& quantity) {
-    const GridStats s = stats_of(values);
-    const int x = PlanLayout::k_margin;
-    canvas.text(x, PlanLayout::k_margin,
-                fmt::format("{}: {} ({})", grid.name, quantity.name, quantity.unit), k_text_scale,
-                k_ink);
-    canvas.text(x, PlanLayout::k_margin + 22,
-                fmt::format("avg {} min {} max {} U0 {:.2f}", label(s.avg), label(s.min),
-                            label(s.max), s.uniformity),
-                k_text_scale, k_ink);
-}
-
-} // namespace
 
 PlanLayout PlanLayout::of(const SensorGrid& grid) {
     double u_lo = std::numeric_limits<double>::infinity(), u_hi = -u_lo;
@@ -210,16 +201,28 @@ std::pair<double, double> PlanLayout::pixel_at(const SensorGrid& grid, double ro
 }
 
 Canvas draw_grid_plan(const SensorGrid& grid, const std::vector<double>& values,
-                      const PlanQuantity& quantity) {
+                      const PlanTitle& title, const ColourScale& scale) {
     const PlanLayout layout = PlanLayout::of(grid);
-    const GridStats stats = stats_of(values);
-    const ColourScale scale = ColourScale::covering(stats.min, stats.max);
     Canvas canvas(layout.width, layout.height, k_white);
     paint_field(canvas, layout, grid, filled_lattice(grid, values), scale);
     draw_outline_and_points(canvas, layout, grid);
-    draw_legend(canvas, layout, scale);
-    draw_title(canvas, grid, values, quantity);
+    draw_colour_bar(canvas, layout.bar_x, layout.bar_y, PlanLayout::k_bar_width, layout.bar_height,
+                    scale);
+    draw_title(canvas, title);
     return canvas;
+}
+
+std::string plan_statistics(const GridStats& stats) {
+    return fmt::format("avg {} min {} max {}", label(stats.avg), label(stats.min),
+                       label(stats.max));
+}
+
+Canvas draw_grid_plan(const SensorGrid& grid, const std::vector<double>& values,
+                      const PlanQuantity& quantity) {
+    const GridStats stats = stats_of(values);
+    const PlanTitle title{fmt::format("{}: {} ({})", grid.name, quantity.name, quantity.unit),
+                          fmt::format("{} U0 {:.2f}", plan_statistics(stats), stats.uniformity)};
+    return draw_grid_plan(grid, values, title, ColourScale::covering(stats.min, stats.max));
 }
 
 } // namespace penumbra::app

@@ -1,7 +1,8 @@
 #pragma once
-// Private to penumbra_pipeline: the false-colour plan of a sensor grid (grid_NAME.png): the
-// grid's values interpolated over its outline in a perceptual colour map, iso-lines at the
-// scale's round steps, the outline, the points, a legend with numbers and the statistics.
+// Private to penumbra_pipeline: the false-colour plan of a sensor grid (grid_NAME.png, and
+// annual_GRID_METRIC.png): the grid's values interpolated over its outline in a perceptual
+// colour map, iso-lines at the scale's round steps, the outline, the points, a legend with
+// numbers and two lines of title.
 
 #include <optional>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "core/scene.h"
 
 #include "canvas.h"
+#include "colour_scale.h"
 #include "daylight.h"
 
 namespace penumbra::app {
@@ -39,10 +41,29 @@ struct PlanLayout {
     std::pair<double, double> pixel_at(const SensorGrid& grid, double row, double column) const;
 };
 
+/// \brief The two lines above a plan: what it shows (with its unit) and its statistics.
+struct PlanTitle {
+    std::string heading;
+    std::string statistics;
+};
+
+/// \brief Draws the plan of \p grid with \p values at its present points (in lattice order)
+///        coloured on \p scale, under \p title. Between the points the values are bilinear;
+///        beyond the outermost (within the wall offset) they hold the nearest points' values.
+Canvas draw_grid_plan(const SensorGrid& grid, const std::vector<double>& values,
+                      const PlanTitle& title, const ColourScale& scale);
+
+/// \brief The colour bar of \p scale, \p width × \p height pixels from (\p x, \p top), its
+///        bottom at the scale's bottom, with a tick and a number at every level right of it.
+void draw_colour_bar(Canvas& canvas, int x, int top, int width, int height,
+                     const ColourScale& scale);
+
+/// \brief "avg A min B max C": a grid's statistics as a plan's title shows them.
+std::string plan_statistics(const GridStats& stats);
+
 /// \brief Draws the plan of \p grid with \p values at its present points (in lattice order,
-///        as grid_illuminance_lx gives them) in \p quantity's unit. Between the points the
-///        values are bilinear; beyond the outermost (within the wall offset) they hold the
-///        nearest points' values.
+///        as grid_illuminance_lx gives them) in \p quantity's unit, on the scale covering
+///        them, titled with the quantity and the statistics (with U0 = min / avg).
 Canvas draw_grid_plan(const SensorGrid& grid, const std::vector<double>& values,
                       const PlanQuantity& quantity);
 

@@ -71,13 +71,10 @@ vtkNew<vtkCellArray> grid_quads(const SensorGrid& grid, const GridPoints& points
 
 } // namespace
 
-void write_grid_vtp(const std::string& path, const Scene& scene, const SensorGrid& grid,
-                    const std::vector<SensorReading>& readings,
-                    std::optional<double> daylight_reference_lx) {
-    if (readings.size() != scene.sensors.size())
-        throw InternalError(fmt::format("write_grid_vtp: {} readings for {} sensors",
-                                        readings.size(), scene.sensors.size()));
+void write_grid_arrays_vtp(const std::string& path, const Scene& scene, const SensorGrid& grid,
+                           const std::vector<GridPointArray>& arrays) {
     const GridPoints points = present_points(grid);
+    const std::size_t n = points.sensor.size();
     vtkNew<vtkPoints> xyz;
     xyz->SetDataTypeToDouble();
     vtkNew<vtkCellArray> vertices;
@@ -91,25 +88,45 @@ void write_grid_vtp(const std::string& path, const Scene& scene, const SensorGri
     data->SetVerts(vertices);
     data->SetPolys(grid_quads(grid, points));
     vtkPointData* pd = data->GetPointData();
-    const std::size_t n = points.sensor.size();
-    const auto lx = [&](std::size_t i) { return readings[points.sensor[i]].illuminance_total_lx; };
-    add_scalar<vtkDoubleArray>(pd, "illuminance_direct_lx", n, [&](std::size_t i) {
-        return readings[points.sensor[i]].illuminance_direct_lx;
-    });
-    add_scalar<vtkDoubleArray>(pd, "illuminance_total_lx", n, lx);
-    if (daylight_reference_lx)
-        add_scalar<vtkDoubleArray>(pd, "daylight_factor_pct", n, [&](std::size_t i) {
-            return 100 * lx(i) / *daylight_reference_lx;
-        });
+    std::vector<std::pair<std::string, std::string>> units;
+    for (const GridPointArray& array : arrays) {
+        if (array.values.size() != n)
+            throw InternalError(fmt::format("write_grid_arrays_vtp: {} values of {} for {} points",
+                                            array.values.size(), array.name, n));
+        add_scalar<vtkDoubleArray>(pd, array.name.c_str(), n,
+                                   [&](std::size_t i) { return array.values[i]; });
+        if (!array.unit.empty())
+            units.emplace_back(array.name, array.unit);
+    }
     add_scalar<vtkIntArray>(pd, "row", n, [&](std::size_t i) { return points.row[i]; });
     add_scalar<vtkIntArray>(pd, "column", n, [&](std::size_t i) { return points.column[i]; });
-    add_units(data, {{"illuminance_direct_lx", "lx"},
-                     {"illuminance_total_lx", "lx"},
-                     {"daylight_factor_pct", "%"}});
+    add_units(data, units);
     write_atomically(path, [&](const std::string& temp) {
         vtkNew<vtkXMLPolyDataWriter> writer;
         write_xml(writer, data, temp, path);
     });
+}
+
+void write_grid_vtp(const std::string& path, const Scene& scene, const SensorGrid& grid,
+                    const std::vector<SensorReading>& readings,
+                    std::optional<double> daylight_reference_lx) {
+    if (readings.size() != scene.sensors.size())
+        throw InternalError(fmt::format("write_grid_vtp: {} readings for {} sensors",
+                                        readings.size(), scene.sensors.size()));
+    std::vector<GridPointArray> arrays{{"illuminance_direct_lx", "lx", {}},
+                                       {"illuminance_total_lx", "lx", {}}};
+    for (const auto& sensor : grid.sensors)
+        if (sensor) {
+            arrays[0].values.push_back(readings[*sensor].illuminance_direct_lx);
+            arrays[1].values.push_back(readings[*sensor].illuminance_total_lx);
+        }
+    if (daylight_reference_lx) {
+        GridPointArray df{"daylight_factor_pct", "%", arrays[1].values};
+        for (double& value : df.values)
+            value *= 100 / *daylight_reference_lx;
+        arrays.push_back(std::move(df));
+    }
+    write_grid_arrays_vtp(path, scene, grid, arrays);
 }
 
 } // namespace penumbra::viewer

@@ -43,6 +43,20 @@ void write_grid_vtp(const std::string& path, const Scene& scene, const SensorGri
                     const std::vector<SensorReading>& readings,
                     std::optional<double> daylight_reference_lx);
 
+/// \brief One array of point data of a grid's .vtp: a value per present lattice point, in
+///        lattice order (row-major), and its unit ("" for none).
+struct GridPointArray {
+    std::string name;
+    std::string unit;
+    std::vector<double> values;
+};
+
+/// \brief Writes one sensor grid of \p scene as a .vtp, as write_grid_vtp() does, with the
+///        point data \p arrays (doubles) and row, column.
+/// \throws InternalError for an array whose size is not the grid's count of present points.
+void write_grid_arrays_vtp(const std::string& path, const Scene& scene, const SensorGrid& grid,
+                           const std::vector<GridPointArray>& arrays);
+
 /// \brief Writes the discontinuity segments of \p mesh as a .vtp of lines with cell data
 ///        order, source and surface (see DiscontinuitySegment). source is the emitting
 ///        polygon's index for an area source, −1 for the sun and −2 − i for point light i.

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <tuple>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -83,12 +82,16 @@ struct ChartTexels {
 ChartTexels chart_texels(const Chart& chart, const ChartPlacement& p, std::uint32_t chart_id,
                          int size) {
     std::vector<std::pair<std::uint64_t, std::uint32_t>> hits; // (texel key, triangle)
+    const std::size_t rect_texels = std::size_t(p.rect.width) * std::size_t(p.rect.height);
+    hits.reserve(rect_texels + 2 * chart.triangles.size());
     for (std::uint32_t t = 0; t < chart.triangles.size(); ++t)
         for_each_covered_texel(texel_triangle(chart, p, t), size, [&](int x, int y) {
             hits.push_back({std::uint64_t(y) * std::uint64_t(size) + std::uint64_t(x), t});
         });
     std::sort(hits.begin(), hits.end());
     ChartTexels out;
+    out.texels.reserve(rect_texels);
+    out.overlaps.reserve(hits.size());
     for (std::size_t i = 0; i < hits.size();) {
         Texel texel;
         texel.x = int(hits[i].first % std::uint64_t(size));
@@ -107,6 +110,46 @@ ChartTexels chart_texels(const Chart& chart, const ChartPlacement& p, std::uint3
     return out;
 }
 
+// The charts' texels of one atlas in row-major order: a scan of the atlas's texel grid rather
+// than a sort, since each texel has exactly one owner. Releases the charts' own lists.
+AtlasTexels merge_atlas(std::vector<ChartTexels>& per_chart, const AtlasLayout& layout,
+                        std::uint32_t atlas) {
+    constexpr auto none = ~std::uint64_t(0);
+    const auto size = std::size_t(layout.size);
+    std::vector<std::uint64_t> owner(size * size, none); // (chart << 32) | texel index
+    AtlasTexels out;
+    out.size = layout.size;
+    std::size_t count = 0;
+    for (std::size_t c = 0; c < per_chart.size(); ++c) {
+        if (layout.placements[c].atlas != atlas)
+            continue;
+        for (std::size_t i = 0; i < per_chart[c].texels.size(); ++i) {
+            const Texel& t = per_chart[c].texels[i];
+            std::uint64_t& o = owner[std::size_t(t.y) * size + std::size_t(t.x)];
+            if (o != none)
+                throw InternalError("lightmap: two charts cover one texel; packing broke");
+            o = (std::uint64_t(c) << 32) | i;
+        }
+        count += per_chart[c].texels.size();
+    }
+    out.texels.reserve(count);
+    out.overlaps.reserve(count);
+    for (std::uint64_t o : owner) {
+        if (o == none)
+            continue;
+        const ChartTexels& chart = per_chart[o >> 32];
+        Texel t = chart.texels[o & 0xffffffffu];
+        const auto first = chart.overlaps.begin() + t.first_overlap;
+        t.first_overlap = std::uint32_t(out.overlaps.size());
+        out.overlaps.insert(out.overlaps.end(), first, first + t.overlap_count);
+        out.texels.push_back(t);
+    }
+    for (std::size_t c = 0; c < per_chart.size(); ++c)
+        if (layout.placements[c].atlas == atlas)
+            per_chart[c] = {};
+    return out;
+}
+
 } // namespace
 
 std::vector<AtlasTexels> rasterize(const Charts& charts, const AtlasLayout& layout,
@@ -119,27 +162,8 @@ std::vector<AtlasTexels> rasterize(const Charts& charts, const AtlasLayout& layo
         });
     });
     std::vector<AtlasTexels> atlases(std::size_t(layout.atlas_count));
-    for (AtlasTexels& a : atlases)
-        a.size = layout.size;
-    for (std::size_t c = 0; c < per_chart.size(); ++c) {
-        AtlasTexels& atlas = atlases[layout.placements[c].atlas];
-        const auto offset = std::uint32_t(atlas.overlaps.size());
-        atlas.overlaps.insert(atlas.overlaps.end(), per_chart[c].overlaps.begin(),
-                              per_chart[c].overlaps.end());
-        for (Texel texel : per_chart[c].texels) {
-            texel.first_overlap += offset;
-            atlas.texels.push_back(texel);
-        }
-    }
-    for (AtlasTexels& atlas : atlases) {
-        std::sort(atlas.texels.begin(), atlas.texels.end(), [](const Texel& a, const Texel& b) {
-            return std::tie(a.y, a.x) < std::tie(b.y, b.x);
-        });
-        for (std::size_t i = 1; i < atlas.texels.size(); ++i)
-            if (atlas.texels[i].x == atlas.texels[i - 1].x &&
-                atlas.texels[i].y == atlas.texels[i - 1].y)
-                throw InternalError("lightmap: two charts cover one texel; packing broke");
-    }
+    for (std::uint32_t a = 0; a < atlases.size(); ++a)
+        atlases[a] = merge_atlas(per_chart, layout, a);
     return atlases;
 }
 

@@ -1,6 +1,7 @@
 // Charts: triangulation of concave polygons, planar charts without distortion, LSCM on
 // curved patches without flips, imported UV sets.
 
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -139,6 +140,62 @@ TEST(Charts, SphereChartsHaveNoFlipsAndCoverTheSphere) {
     // A facet that no neighbour within the deviation joins stays a planar chart.
     EXPECT_GE(curved, charts.charts.size() / 2);
     EXPECT_LE(charts.charts.size(), 40u) << "the sphere falls apart into small charts";
+}
+
+// The largest number of triangles of the chart that hold one point strictly inside, over a
+// grid of points across its uv bounding box: 1 for a chart without overlaps.
+int most_layers(const Chart& chart, int grid) {
+    Vec2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+    for (const ChartVertex& v : chart.vertices) {
+        lo = {std::min(lo.x, v.uv.x), std::min(lo.y, v.uv.y)};
+        hi = {std::max(hi.x, v.uv.x), std::max(hi.y, v.uv.y)};
+    }
+    int most = 0;
+    for (int j = 0; j < grid; ++j)
+        for (int i = 0; i < grid; ++i) {
+            const Vec2 p{lo.x + (hi.x - lo.x) * (i + 0.5) / grid,
+                         lo.y + (hi.y - lo.y) * (j + 0.5) / grid};
+            int layers = 0;
+            for (const ChartTriangle& t : chart.triangles) {
+                bool inside = true;
+                for (int k = 0; k < 3; ++k) {
+                    const Vec2 a = chart.vertices[t.vertices[std::size_t(k)]].uv;
+                    const Vec2 b = chart.vertices[t.vertices[std::size_t((k + 1) % 3)]].uv;
+                    inside = inside && (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) > 1e-9;
+                }
+                layers += inside;
+            }
+            most = std::max(most, layers);
+        }
+    return most;
+}
+
+// A ramp winding one and a half times around a pole: its normals stay within a few degrees
+// of vertical, so it grows into one chart, whose flattening overlaps itself; splitting must
+// end in charts that do not.
+TEST(Charts, SelfOverlappingSpiralIsSplitUntilValid) {
+    Scene scene;
+    const auto white = add_material(scene, "white", Rgb(0.5, 0.5, 0.5));
+    const int segments = 108;
+    for (int s = 0; s < segments; ++s) {
+        auto at = [](double r, int step) {
+            const double angle = 3 * k_pi * step / 108;
+            return Vec3(r * std::cos(angle), r * std::sin(angle), 0.2 * angle / (2 * k_pi));
+        };
+        Polygon p;
+        p.vertices = {at(1, s), at(2, s), at(2, s + 1), at(1, s + 1)};
+        p.name = "ramp";
+        p.material = white;
+        scene.polygons.push_back(p);
+    }
+    const Charts charts = build_charts(scene, {}, quiet_context());
+    EXPECT_GE(charts.split_charts, 1u);
+    EXPECT_GE(charts.charts.size(), 2u);
+    for (const Chart& chart : charts.charts) {
+        for (const ChartTriangle& t : chart.triangles)
+            EXPECT_GT(uv_area(chart, t), 0);
+        EXPECT_LE(most_layers(chart, 200), 1);
+    }
 }
 
 TEST(Charts, ImportedUvSetIsOneChartScaledToItsArea) {

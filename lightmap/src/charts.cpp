@@ -107,6 +107,35 @@ void check_settings(const ChartSettings& s) {
             throw ConfigError("lightmap: planar_distance_m and weld_tolerance_m must be >= 0");
 }
 
+// Charts of the polygons (indices into Scene::polygons), grouped by object in the order of
+// their first polygon.
+Charts generate_charts(const Scene& scene, const std::vector<std::uint32_t>& polygons,
+                       const ChartSettings& settings, const Context& ctx) {
+    const double diagonal = scene.bounds().diagonal();
+    const InputMesh mesh =
+        build_input_mesh(scene, polygons, settings.weld_tolerance_m.value_or(1e-6 * diagonal));
+    const PlanarRegions regions =
+        find_planar_regions(mesh, settings.planar_angle_deg * k_degree,
+                            settings.planar_distance_m.value_or(1e-4 * diagonal));
+    std::vector<std::vector<std::uint32_t>> grown =
+        grow_charts(mesh, regions, settings.max_normal_deviation_deg * k_degree);
+    std::vector<std::vector<Chart>> flattened(grown.size());
+    std::vector<std::size_t> splits(grown.size(), 0);
+    run_in_arena(ctx, [&] {
+        parallel_for_index(grown.size(), 1, [&](std::size_t i) {
+            flatten(mesh, regions, std::move(grown[i]), flattened[i], splits[i]);
+        });
+    });
+    Charts result;
+    result.skipped_polygons = mesh.skipped_polygons;
+    for (std::size_t i = 0; i < flattened.size(); ++i) {
+        result.split_charts += splits[i];
+        for (Chart& chart : flattened[i])
+            result.charts.push_back(std::move(chart));
+    }
+    return result;
+}
+
 } // namespace
 
 double Chart::area_m2() const {
@@ -121,7 +150,6 @@ double Chart::area_m2() const {
 
 Charts build_charts(const Scene& scene, const ChartSettings& settings, const Context& ctx) {
     check_settings(settings);
-    const double diagonal = scene.bounds().diagonal();
     const std::vector<ObjectPolygons> objects = group_by_object(scene);
     std::map<std::string, std::vector<Chart>> by_object;
     std::vector<std::uint32_t> generated;
@@ -140,29 +168,10 @@ Charts build_charts(const Scene& scene, const ChartSettings& settings, const Con
             generated.insert(generated.end(), object.polygons.begin(), object.polygons.end());
     }
     std::sort(generated.begin(), generated.end());
-
-    const InputMesh mesh =
-        build_input_mesh(scene, generated, settings.weld_tolerance_m.value_or(1e-6 * diagonal));
-    const PlanarRegions regions =
-        find_planar_regions(mesh, settings.planar_angle_deg * k_degree,
-                            settings.planar_distance_m.value_or(1e-4 * diagonal));
-    std::vector<std::vector<std::uint32_t>> grown =
-        grow_charts(mesh, regions, settings.max_normal_deviation_deg * k_degree);
-    std::vector<std::vector<Chart>> flattened(grown.size());
-    std::vector<std::size_t> splits(grown.size(), 0);
-    run_in_arena(ctx, [&] {
-        parallel_for_index(grown.size(), 1, [&](std::size_t i) {
-            flatten(mesh, regions, std::move(grown[i]), flattened[i], splits[i]);
-        });
-    });
-
-    Charts result;
-    result.skipped_polygons = mesh.skipped_polygons;
-    for (std::size_t i = 0; i < flattened.size(); ++i) {
-        result.split_charts += splits[i];
-        for (Chart& chart : flattened[i])
-            by_object[chart.object].push_back(std::move(chart));
-    }
+    Charts result = generate_charts(scene, generated, settings, ctx);
+    for (Chart& chart : result.charts)
+        by_object[chart.object].push_back(std::move(chart));
+    result.charts.clear();
     for (const ObjectPolygons& object : objects)
         for (Chart& chart : by_object[object.name])
             result.charts.push_back(std::move(chart));

@@ -83,6 +83,54 @@ Vec3 principal_axis(const std::array<Vec3, 3>& m) {
     return v;
 }
 
+// Regions by object, then largest area first, then id.
+std::vector<std::uint32_t> seed_order(const InputMesh& mesh, const PlanarRegions& regions) {
+    std::vector<std::uint32_t> seeds(regions.normal.size());
+    std::iota(seeds.begin(), seeds.end(), std::uint32_t(0));
+    auto object_of = [&](std::uint32_t r) { return mesh.triangles[regions.members[r][0]].object; };
+    std::sort(seeds.begin(), seeds.end(), [&](std::uint32_t a, std::uint32_t b) {
+        if (object_of(a) != object_of(b))
+            return object_of(a) < object_of(b);
+        return regions.area_m2[a] > regions.area_m2[b] ||
+               (regions.area_m2[a] == regions.area_m2[b] && a < b);
+    });
+    return seeds;
+}
+
+// One chart from \p seed: neighbouring regions not yet taken join, smallest deviation from the
+// seed's normal first, when all their triangles lie within the deviation. Ascending triangles.
+std::vector<std::uint32_t> grow_chart(const InputMesh& mesh, const PlanarRegions& regions,
+                                      std::uint32_t seed, double cos_max,
+                                      std::vector<bool>& taken) {
+    const Vec3 axis = regions.normal[seed];
+    auto fits = [&](std::uint32_t r) {
+        return std::all_of(
+            regions.members[r].begin(), regions.members[r].end(),
+            [&](std::uint32_t t) { return dot(mesh.triangles[t].normal, axis) >= cos_max; });
+    };
+    std::vector<std::uint32_t> chart;
+    std::set<std::pair<double, std::uint32_t>> frontier{{0.0, seed}}; // (deviation, region)
+    std::set<std::uint32_t> tried{seed};
+    while (!frontier.empty()) {
+        const std::uint32_t r = frontier.begin()->second;
+        frontier.erase(frontier.begin());
+        if (r != seed && !fits(r))
+            continue;
+        taken[r] = true;
+        chart.insert(chart.end(), regions.members[r].begin(), regions.members[r].end());
+        for (std::uint32_t t : regions.members[r])
+            for (const auto& n : mesh.neighbours[t]) {
+                const std::uint32_t other = n ? regions.of_triangle[*n] : r;
+                if (!taken[other] && tried.insert(other).second)
+                    frontier.insert(
+                        {std::acos(std::clamp(dot(regions.normal[other], axis), -1.0, 1.0)),
+                         other});
+            }
+    }
+    std::sort(chart.begin(), chart.end());
+    return chart;
+}
+
 } // namespace
 
 PlanarRegions find_planar_regions(const InputMesh& mesh, double max_angle_rad,
@@ -123,54 +171,12 @@ PlanarRegions find_planar_regions(const InputMesh& mesh, double max_angle_rad,
 
 std::vector<std::vector<std::uint32_t>>
 grow_charts(const InputMesh& mesh, const PlanarRegions& regions, double max_deviation_rad) {
-    const std::size_t count = regions.normal.size();
-    // Seeds: by object, then largest area first, then region id.
-    std::vector<std::uint32_t> seeds(count);
-    std::iota(seeds.begin(), seeds.end(), std::uint32_t(0));
-    auto object_of = [&](std::uint32_t r) { return mesh.triangles[regions.members[r][0]].object; };
-    std::sort(seeds.begin(), seeds.end(), [&](std::uint32_t a, std::uint32_t b) {
-        if (object_of(a) != object_of(b))
-            return object_of(a) < object_of(b);
-        return regions.area_m2[a] > regions.area_m2[b] ||
-               (regions.area_m2[a] == regions.area_m2[b] && a < b);
-    });
     const double cos_max = std::cos(max_deviation_rad);
-    std::vector<bool> taken(count, false);
+    std::vector<bool> taken(regions.normal.size(), false);
     std::vector<std::vector<std::uint32_t>> charts;
-    for (std::uint32_t seed : seeds) {
-        if (taken[seed])
-            continue;
-        const Vec3 axis = regions.normal[seed];
-        auto deviation = [&](std::uint32_t r) {
-            return std::acos(std::clamp(dot(regions.normal[r], axis), -1.0, 1.0));
-        };
-        auto fits = [&](std::uint32_t r) {
-            return std::all_of(
-                regions.members[r].begin(), regions.members[r].end(),
-                [&](std::uint32_t t) { return dot(mesh.triangles[t].normal, axis) >= cos_max; });
-        };
-        std::vector<std::uint32_t> chart;
-        std::set<std::pair<double, std::uint32_t>> frontier{{0.0, seed}};
-        std::set<std::uint32_t> tried{seed};
-        while (!frontier.empty()) {
-            const std::uint32_t r = frontier.begin()->second;
-            frontier.erase(frontier.begin());
-            if (r != seed && !fits(r))
-                continue;
-            taken[r] = true;
-            chart.insert(chart.end(), regions.members[r].begin(), regions.members[r].end());
-            for (std::uint32_t t : regions.members[r])
-                for (const auto& n : mesh.neighbours[t]) {
-                    if (!n)
-                        continue;
-                    const std::uint32_t other = regions.of_triangle[*n];
-                    if (!taken[other] && tried.insert(other).second)
-                        frontier.insert({deviation(other), other});
-                }
-        }
-        std::sort(chart.begin(), chart.end());
-        charts.push_back(std::move(chart));
-    }
+    for (std::uint32_t seed : seed_order(mesh, regions))
+        if (!taken[seed])
+            charts.push_back(grow_chart(mesh, regions, seed, cos_max, taken));
     return charts;
 }
 

@@ -227,6 +227,7 @@ InputMesh build_input_mesh(const Scene& scene, const std::vector<std::uint32_t>&
         }
     }
     link_neighbours(mesh);
+    mesh.collinear_neighbours = find_collinear_neighbours(mesh, weld_tolerance);
     return mesh;
 }
 

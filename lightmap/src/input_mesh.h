@@ -27,6 +27,10 @@ struct InputMesh {
     /// Per triangle and edge k (corners k, k + 1): the triangle across it when exactly two
     /// triangles of the same object share it with opposite directions (a manifold edge).
     std::vector<std::array<std::optional<std::uint32_t>, 3>> neighbours;
+    /// Per triangle: triangles of the same object with an edge along part of one of its edges
+    /// that is not a manifold edge (T-junctions: a wall cut into pieces around a window).
+    /// Planar regions join through them; LSCM charts do not (CGAL needs a manifold).
+    std::vector<std::vector<std::uint32_t>> collinear_neighbours;
     std::size_t skipped_polygons = 0;
 };
 
@@ -39,6 +43,12 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(const std::vector<
 /// \brief The unit plane normal of a planar polygon (Newell), or none when it is not planar
 ///        within \p planarity_tolerance × its diagonal or has no area.
 std::optional<Vec3> planar_normal(const std::vector<Vec3>& vertices, double planarity_tolerance);
+
+/// \brief InputMesh::collinear_neighbours: pairs of non-manifold edges of one object that run
+///        in opposite directions along one line (within \p tolerance metres) and overlap by
+///        more than \p tolerance.
+std::vector<std::vector<std::uint32_t>> find_collinear_neighbours(const InputMesh& mesh,
+                                                                  double tolerance);
 
 /// \brief Triangulates and welds every polygon of \p polygon_ids (indices into Scene::polygons).
 InputMesh build_input_mesh(const Scene& scene, const std::vector<std::uint32_t>& polygon_ids,

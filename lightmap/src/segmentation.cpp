@@ -103,10 +103,15 @@ std::vector<std::uint32_t> grow_chart(const InputMesh& mesh, const PlanarRegions
                                       std::uint32_t seed, double cos_max,
                                       std::vector<bool>& taken) {
     const Vec3 axis = regions.normal[seed];
+    if (regions.joined_collinear[seed]) {
+        taken[seed] = true; // a chart of its own: CGAL's LSCM needs a manifold
+        return regions.members[seed];
+    }
     auto fits = [&](std::uint32_t r) {
-        return std::all_of(
-            regions.members[r].begin(), regions.members[r].end(),
-            [&](std::uint32_t t) { return dot(mesh.triangles[t].normal, axis) >= cos_max; });
+        return !regions.joined_collinear[r] &&
+               std::all_of(
+                   regions.members[r].begin(), regions.members[r].end(),
+                   [&](std::uint32_t t) { return dot(mesh.triangles[t].normal, axis) >= cos_max; });
     };
     std::vector<std::uint32_t> chart;
     std::set<std::pair<double, std::uint32_t>> frontier{{0.0, seed}}; // (deviation, region)
@@ -149,19 +154,29 @@ PlanarRegions find_planar_regions(const InputMesh& mesh, double max_angle_rad,
         std::deque<std::uint32_t> queue{seed};
         regions.of_triangle[seed] = id;
         double area = 0;
+        bool collinear = false;
+        auto join = [&](std::uint32_t n) {
+            const bool joins = regions.of_triangle[n] == unassigned &&
+                               fits_plane(mesh, n, normal, origin, cos_angle, max_distance);
+            if (joins) {
+                regions.of_triangle[n] = id;
+                queue.push_back(n);
+            }
+            return joins;
+        };
         while (!queue.empty()) {
             const std::uint32_t t = queue.front();
             queue.pop_front();
             members.push_back(t);
             area += mesh.triangles[t].area_m2;
             for (const auto& n : mesh.neighbours[t])
-                if (n && regions.of_triangle[*n] == unassigned &&
-                    fits_plane(mesh, *n, normal, origin, cos_angle, max_distance)) {
-                    regions.of_triangle[*n] = id;
-                    queue.push_back(*n);
-                }
+                if (n)
+                    join(*n);
+            for (std::uint32_t n : mesh.collinear_neighbours[t])
+                collinear = join(n) || collinear;
         }
         std::sort(members.begin(), members.end());
+        regions.joined_collinear.push_back(collinear);
         regions.normal.push_back(normal);
         regions.area_m2.push_back(area);
         regions.members.push_back(std::move(members));

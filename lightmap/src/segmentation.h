@@ -15,9 +15,12 @@ struct PlanarRegions {
     std::vector<Vec3> normal;                        ///< per region: its first triangle's normal
     std::vector<double> area_m2;                     ///< per region
     std::vector<std::vector<std::uint32_t>> members; ///< per region: its triangles, ascending
+    /// Per region: some triangle joined it through a collinear (T-junction) edge only, so it
+    /// is a planar chart on its own and never part of a curved one.
+    std::vector<bool> joined_collinear;
 };
 
-/// \brief Regions of triangles connected by manifold edges whose normals lie within
+/// \brief Regions of triangles connected by manifold or collinear edges whose normals lie within
 ///        \p max_angle_rad of the region's first triangle's and whose corners lie within
 ///        \p max_distance of that triangle's plane. Seeds in triangle order.
 PlanarRegions find_planar_regions(const InputMesh& mesh, double max_angle_rad, double max_distance);

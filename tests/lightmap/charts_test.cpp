@@ -77,6 +77,23 @@ TEST(Charts, CoplanarPolygonsOfOneObjectShareAChart) {
     EXPECT_NEAR(charts.charts[0].area_m2(), 3.0, 1e-12);
 }
 
+TEST(Charts, WallPiecesAroundAWindowAreOneChart) {
+    // A 4 × 3 m wall cut around a 1 × 1 m window: the pieces meet at T-junctions.
+    Scene scene;
+    const auto white = add_material(scene, "white", Rgb(0.5, 0.5, 0.5));
+    const Vec3 x(1, 0, 0), z(0, 0, 1);
+    add_rect(scene, "wall", white, {0, 0, 0}, x * 4, z);  // below the window
+    add_rect(scene, "wall", white, {0, 0, 2}, x * 4, z);  // above
+    add_rect(scene, "wall", white, {0, 0, 1}, x, z);      // left
+    add_rect(scene, "wall", white, {2, 0, 1}, x * 2, z);  // right
+    add_rect(scene, "other", white, {0, 0, 3}, x * 4, z); // another object on top
+    const Charts charts = build_charts(scene, {}, quiet_context());
+    ASSERT_EQ(charts.charts.size(), 2u);
+    EXPECT_EQ(charts.charts[0].object, "wall");
+    EXPECT_EQ(charts.charts[0].kind, ChartKind::planar);
+    EXPECT_NEAR(charts.charts[0].area_m2(), 11.0, 1e-12);
+}
+
 TEST(Charts, BoxFacesAreSeparateCharts) {
     // Faces at 90° exceed the 40° normal deviation: one planar chart each.
     Scene scene;

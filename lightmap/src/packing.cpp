@@ -1,6 +1,6 @@
-// Atlas packing with stb_rect_pack's skyline packer (Sean Barrett, libstb-dev). Charts are
-// first turned to their minimum-area bounding rectangles; then every combination of a 90°
-// orientation policy (landscape, portrait) and a skyline heuristic (bottom-left, best-fit) is
+// Atlas packing with stb_rect_pack's skyline packer (Sean Barrett, libstb-dev). Generated
+// charts are first turned to their minimum-area bounding rectangles; then every combination of a
+// 90° orientation policy (landscape, portrait) and a skyline heuristic (bottom-left, best-fit) is
 // packed and the one with the fewest atlases, then the lowest skyline in the last one, kept.
 // Rectangles go in one at a time in our own sorted order, so the result never depends on
 // qsort's handling of equal keys inside stb.
@@ -43,7 +43,9 @@ Oriented orient_chart(const Chart& chart, double density) {
     for (const ChartTriangle& t : chart.triangles)
         for (std::uint32_t v : t.vertices)
             used.push_back(chart.vertices[v].uv);
-    const double angle = min_area_rectangle_angle(used);
+    // An artist's layout keeps its axes (quarter turns only): its islands were laid out
+    // against them.
+    const double angle = chart.kind == ChartKind::imported ? 0.0 : min_area_rectangle_angle(used);
     const double c = std::cos(angle), s = std::sin(angle);
     Oriented o;
     o.density = density;

@@ -1,6 +1,7 @@
 // The lightmap UV set of a glTF file (TEXCOORD_1) through the scene loader, in glTF's
 // convention, and the charts it gives.
 
+#include <cmath>
 #include <fstream>
 
 #include <gtest/gtest.h>
@@ -78,6 +79,27 @@ TEST(ImportedUv, GltfTexcoord1BecomesOneImportedChart) {
     EXPECT_EQ(charts.charts[0].object, "panel");
     const AtlasLayout layout = pack_atlases(charts, {.texels_per_metre = 40, .size = 128}, ctx);
     expect_valid_layout(charts, layout, rasterize(charts, layout, ctx));
+
+    // The file's layout keeps its axes: atlas edges are the file's edges scaled and turned by
+    // a multiple of 90°.
+    const auto& file = scene.polygons[0].lightmap_uv;
+    const auto& atlas = layout.placements[0].texel_uv;
+    ASSERT_EQ(charts.charts[0].vertices.size(), 3u);
+    auto edge = [](const Vec2& a, const Vec2& b) { return Vec2{b.x - a.x, b.y - a.y}; };
+    const Vec2 f1 = edge(file[0], file[1]), f2 = edge(file[0], file[2]);
+    const Vec2 a1 = edge(atlas[0], atlas[1]), a2 = edge(atlas[0], atlas[2]);
+    const double scale = std::hypot(a1.x, a1.y) / std::hypot(f1.x, f1.y);
+    bool quarter_turn = false;
+    Vec2 r1 = f1, r2 = f2;
+    for (int turn = 0; turn < 4; ++turn) {
+        quarter_turn =
+            quarter_turn ||
+            (std::abs(a1.x - scale * r1.x) < 1e-9 && std::abs(a1.y - scale * r1.y) < 1e-9 &&
+             std::abs(a2.x - scale * r2.x) < 1e-9 && std::abs(a2.y - scale * r2.y) < 1e-9);
+        r1 = {-r1.y, r1.x};
+        r2 = {-r2.y, r2.x};
+    }
+    EXPECT_TRUE(quarter_turn);
 
     ChartSettings generated;
     generated.use_imported_uv = false;

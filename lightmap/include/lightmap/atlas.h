@@ -55,7 +55,8 @@ struct AtlasLayout {
     std::vector<double> coverage;
 };
 
-/// \brief Rotates each chart to its minimum-area bounding rectangle, scales it to the texel
+/// \brief Rotates each generated chart to its minimum-area bounding rectangle (imported ones
+///        keep their axes), scales it to the texel
 ///        density, aligns it to the texel grid and packs the rectangles (with padding) into as
 ///        many atlases as needed with stb_rect_pack's skyline packer; both 90° orientations
 ///        (landscape, portrait) and both skyline heuristics are tried and the layout with the

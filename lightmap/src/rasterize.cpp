@@ -114,39 +114,43 @@ ChartTexels chart_texels(const Chart& chart, const ChartPlacement& p, std::uint3
 // than a sort, since each texel has exactly one owner. Releases the charts' own lists.
 AtlasTexels merge_atlas(std::vector<ChartTexels>& per_chart, const AtlasLayout& layout,
                         std::uint32_t atlas) {
-    constexpr auto none = ~std::uint64_t(0);
+    // Texels of the atlas's charts numbered consecutively, chart by chart.
+    std::vector<std::uint32_t> charts;
+    std::vector<std::size_t> first{0};
+    for (std::uint32_t c = 0; c < per_chart.size(); ++c)
+        if (layout.placements[c].atlas == atlas) {
+            charts.push_back(c);
+            first.push_back(first.back() + per_chart[c].texels.size());
+        }
+    constexpr auto none = ~std::uint32_t(0);
     const auto size = std::size_t(layout.size);
-    std::vector<std::uint64_t> owner(size * size, none); // (chart << 32) | texel index
-    AtlasTexels out;
-    out.size = layout.size;
-    std::size_t count = 0;
-    for (std::size_t c = 0; c < per_chart.size(); ++c) {
-        if (layout.placements[c].atlas != atlas)
-            continue;
-        for (std::size_t i = 0; i < per_chart[c].texels.size(); ++i) {
-            const Texel& t = per_chart[c].texels[i];
-            std::uint64_t& o = owner[std::size_t(t.y) * size + std::size_t(t.x)];
+    std::vector<std::uint32_t> owner(size * size, none); // 4 bytes per atlas texel
+    for (std::size_t k = 0; k < charts.size(); ++k)
+        for (std::size_t i = 0; i < per_chart[charts[k]].texels.size(); ++i) {
+            const Texel& t = per_chart[charts[k]].texels[i];
+            std::uint32_t& o = owner[std::size_t(t.y) * size + std::size_t(t.x)];
             if (o != none)
                 throw InternalError("lightmap: two charts cover one texel; packing broke");
-            o = (std::uint64_t(c) << 32) | i;
+            o = std::uint32_t(first[k] + i);
         }
-        count += per_chart[c].texels.size();
-    }
-    out.texels.reserve(count);
-    out.overlaps.reserve(count);
-    for (std::uint64_t o : owner) {
+    AtlasTexels out;
+    out.size = layout.size;
+    out.texels.reserve(first.back());
+    out.overlaps.reserve(first.back());
+    for (std::uint32_t o : owner) {
         if (o == none)
             continue;
-        const ChartTexels& chart = per_chart[o >> 32];
-        Texel t = chart.texels[o & 0xffffffffu];
-        const auto first = chart.overlaps.begin() + t.first_overlap;
+        const std::size_t k =
+            std::size_t(std::upper_bound(first.begin(), first.end(), o) - first.begin()) - 1;
+        const ChartTexels& chart = per_chart[charts[k]];
+        Texel t = chart.texels[o - first[k]];
+        const auto from = chart.overlaps.begin() + t.first_overlap;
         t.first_overlap = std::uint32_t(out.overlaps.size());
-        out.overlaps.insert(out.overlaps.end(), first, first + t.overlap_count);
+        out.overlaps.insert(out.overlaps.end(), from, from + t.overlap_count);
         out.texels.push_back(t);
     }
-    for (std::size_t c = 0; c < per_chart.size(); ++c)
-        if (layout.placements[c].atlas == atlas)
-            per_chart[c] = {};
+    for (std::uint32_t c : charts)
+        per_chart[c] = {};
     return out;
 }
 

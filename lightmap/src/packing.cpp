@@ -1,42 +1,22 @@
-// Atlas packing with stb_rect_pack's skyline packer (Sean Barrett, libstb-dev). Generated
-// charts are first turned to their minimum-area bounding rectangles; then every combination of a
-// 90° orientation policy (landscape, portrait) and a skyline heuristic (bottom-left, best-fit) is
-// packed and the one with the fewest atlases, then the lowest skyline in the last one, kept.
-// Rectangles go in one at a time in our own sorted order, so the result never depends on
-// qsort's handling of equal keys inside stb.
+// pack_atlases: charts turned and scaled into texel units, packed by two packers (stb's on
+// bounding rectangles, ours on texel profiles), the denser layout kept, and each chart's
+// vertices placed in its atlas.
 
 #include "lightmap/atlas.h"
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
-#include <memory>
 #include <tuple>
-
-#define STB_RECT_PACK_IMPLEMENTATION
-#include <stb/stb_rect_pack.h>
 
 #include "core/error.h"
 
+#include "packing_internal.h"
 #include "texel_cover.h"
 #include "uv_geometry.h"
 
 namespace penumbra::lightmap {
 
 namespace {
-
-// Texel coordinates within 1e-9 of a texel edge do not cover the next texel
-// (triangle_overlaps_texel's margin).
-int covered_count(double extent) {
-    return std::max(1, int(std::ceil(extent - 1e-9)));
-}
-
-// A chart in texel units, turned to its minimum-area rectangle, its bounding box at (0, 0).
-struct Oriented {
-    std::vector<Vec2> q; ///< per chart vertex
-    double width = 0, height = 0;
-    double density = 0;
-};
 
 Oriented orient_chart(const Chart& chart, double density) {
     std::vector<Vec2> used;
@@ -79,114 +59,22 @@ Oriented fit_chart(const Chart& chart, const AtlasSettings& settings, const Cont
     return orient_chart(chart, density);
 }
 
-struct Policy {
-    bool portrait = false;
-    int heuristic = STBRP_HEURISTIC_Skyline_BL_sortHeight;
-};
-
-struct Placed {
-    std::uint32_t atlas = 0;
-    int x = 0, y = 0; // the padded rectangle's corner
-    bool turned = false;
-};
-
-struct Packing {
-    std::vector<Placed> placed;
-    int atlases = 0;
-    int last_height = 0; // highest rectangle top in the last atlas
-};
-
-class AtlasBins {
-public:
-    AtlasBins(int width, int heuristic) : width_(width), heuristic_(heuristic) {}
-
-    // Places a w × h rectangle in the first atlas that takes it, opening one if none does.
-    Placed place(int w, int h) {
-        for (std::size_t a = 0;; ++a) {
-            if (a == bins_.size())
-                open();
-            stbrp_rect rect{0, w, h, 0, 0, 0};
-            stbrp_pack_rects(&bins_[a]->context, &rect, 1);
-            if (rect.was_packed) {
-                tops_[a] = std::max(tops_[a], rect.y + h);
-                return {std::uint32_t(a), rect.x, rect.y, false};
-            }
-        }
-    }
-    int count() const { return int(bins_.size()); }
-    int last_top() const { return tops_.empty() ? 0 : tops_.back(); }
-
-private:
-    struct Bin {
-        stbrp_context context{};
-        std::vector<stbrp_node> nodes;
-    };
-    void open() {
-        auto bin = std::make_unique<Bin>();
-        bin->nodes.resize(std::size_t(width_));
-        stbrp_init_target(&bin->context, width_, width_, bin->nodes.data(), width_);
-        stbrp_setup_heuristic(&bin->context, heuristic_);
-        bins_.push_back(std::move(bin));
-        tops_.push_back(0);
-    }
-    int width_, heuristic_;
-    std::vector<std::unique_ptr<Bin>> bins_; // stb keeps pointers into the nodes
-    std::vector<int> tops_;
-};
-
-Packing pack(const std::vector<Oriented>& charts, const AtlasSettings& settings, Policy policy) {
-    struct Item {
-        int w, h;
-        bool turned;
-        std::uint32_t chart;
-    };
-    std::vector<Item> items;
-    for (std::uint32_t i = 0; i < charts.size(); ++i) {
-        const int w = covered_count(charts[i].width), h = covered_count(charts[i].height);
-        const bool turned = policy.portrait ? w > h : h > w;
-        items.push_back(
-            {(turned ? h : w) + settings.padding, (turned ? w : h) + settings.padding, turned, i});
-    }
-    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
-        return std::tie(b.h, b.w, a.chart) < std::tie(a.h, a.w, b.chart);
-    });
-    // The packing area leaves a padding strip along the right and bottom edges; each
-    // rectangle carries its padding on its left and top.
-    AtlasBins bins(settings.size - settings.padding, policy.heuristic);
-    Packing result;
-    result.placed.resize(charts.size());
-    for (const Item& item : items) {
-        result.placed[item.chart] = bins.place(item.w, item.h);
-        result.placed[item.chart].turned = item.turned;
-    }
-    result.atlases = bins.count();
-    result.last_height = bins.last_top();
-    return result;
+// Fewest atlases first, then the lowest used height in the last one.
+std::tuple<int, int> packing_cost(const Packing& p, const std::vector<Oriented>& charts) {
+    int height = 0;
+    for (std::size_t i = 0; i < charts.size(); ++i)
+        if (int(p.placed[i].atlas) == p.atlases - 1)
+            height = std::max(height, p.placed[i].y + charts[i].covered_height(p.placed[i].turns));
+    return {p.atlases, height};
 }
 
-Packing best_packing(const std::vector<Oriented>& charts, const AtlasSettings& settings) {
-    std::optional<Packing> best;
-    for (bool portrait : {false, true})
-        for (int heuristic :
-             {STBRP_HEURISTIC_Skyline_BL_sortHeight, STBRP_HEURISTIC_Skyline_BF_sortHeight}) {
-            Packing p = pack(charts, settings, {portrait, heuristic});
-            if (!best ||
-                std::tie(p.atlases, p.last_height) < std::tie(best->atlases, best->last_height))
-                best = std::move(p);
-        }
-    return std::move(*best);
-}
-
-ChartPlacement place_chart(const Oriented& o, const Placed& placed, const AtlasSettings& s) {
+ChartPlacement place_chart(const Oriented& o, const Placed& placed) {
     ChartPlacement p;
     p.atlas = placed.atlas;
     p.texels_per_metre = o.density;
-    const int w = covered_count(o.width), h = covered_count(o.height);
-    p.rect = {placed.x + s.padding, placed.y + s.padding, placed.turned ? h : w,
-              placed.turned ? w : h};
+    p.rect = {placed.x, placed.y, o.covered_width(placed.turns), o.covered_height(placed.turns)};
     for (const Vec2& q : o.q) {
-        // A quarter turn (x, y) → (height − y, x) keeps the box at the origin.
-        const Vec2 t = placed.turned ? Vec2{o.height - q.y, q.x} : q;
+        const Vec2 t = o.turn(q, placed.turns);
         p.texel_uv.push_back({t.x + p.rect.x, t.y + p.rect.y});
     }
     return p;
@@ -233,10 +121,16 @@ AtlasLayout pack_atlases(const Charts& charts, const AtlasSettings& settings, co
     layout.padding = settings.padding;
     if (charts.charts.empty())
         return layout;
-    const Packing packing = best_packing(oriented, settings);
+    Packing packing = pack_rectangles(oriented, settings);
+    Packing profiles = pack_profiles(charts, oriented, settings);
+    layout.packer = AtlasPacker::rectangles;
+    if (packing_cost(profiles, oriented) < packing_cost(packing, oriented)) {
+        packing = std::move(profiles);
+        layout.packer = AtlasPacker::profiles;
+    }
     layout.atlas_count = packing.atlases;
     for (std::size_t i = 0; i < oriented.size(); ++i)
-        layout.placements.push_back(place_chart(oriented[i], packing.placed[i], settings));
+        layout.placements.push_back(place_chart(oriented[i], packing.placed[i]));
     layout.coverage = measure_coverage(charts, layout);
     return layout;
 }

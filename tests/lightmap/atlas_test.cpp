@@ -51,6 +51,10 @@ double texel_area(const ChartPlacement& p, const ChartTriangle& t) {
     return 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
 }
 
+const char* packer_name(AtlasPacker p) {
+    return p == AtlasPacker::profiles ? "profiles" : "rectangles";
+}
+
 TEST(Atlas, PlanarChartAreasScaleWithDensitySquared) {
     Scene scene;
     const auto white = add_material(scene, "white", Rgb(0.5, 0.5, 0.5));
@@ -107,8 +111,9 @@ TEST(Atlas, CornellBoxGivesValidAtlases) {
             EXPECT_EQ(c.kind, c.object == "left_wall_red" ? ChartKind::curved : ChartKind::planar)
                 << c.object;
         std::printf("Cornell box at %g texels/m, 512² atlas, padding 2: %zu charts, coverage "
-                    "%.4f\n",
-                    density, b.charts.charts.size(), b.layout.coverage[0]);
+                    "%.4f (%s)\n",
+                    density, b.charts.charts.size(), b.layout.coverage[0],
+                    packer_name(b.layout.packer));
         RecordProperty("coverage_" + std::to_string(int(density)), b.layout.coverage[0]);
     }
 }
@@ -118,8 +123,9 @@ TEST(Atlas, SphereGivesValidAtlases) {
     expect_valid_layout(b.charts, b.layout, b.atlases);
     expect_no_flips(b.charts, b.layout);
     std::printf("Sphere (16 × 32 faces, r = 1 m) at 64 texels/m: %zu charts, %d atlas(es), "
-                "coverage %.4f\n",
-                b.charts.charts.size(), b.layout.atlas_count, b.layout.coverage[0]);
+                "coverage %.4f (%s)\n",
+                b.charts.charts.size(), b.layout.atlas_count, b.layout.coverage[0],
+                packer_name(b.layout.packer));
 }
 
 TEST(Atlas, FullAtlasesOpenMore) {
@@ -131,6 +137,28 @@ TEST(Atlas, FullAtlasesOpenMore) {
     // (50 − 2) / (20 + 2) = 2 tiles per row and column: 4 per atlas.
     EXPECT_EQ(b.layout.atlas_count, 3);
     expect_valid_layout(b.charts, b.layout, b.atlases);
+}
+
+// Right triangles fill half their bounding squares: our profile packer nests them, so it
+// needs fewer atlases than rectangles would (25 squares of 20 + 2 texels per 128² atlas).
+TEST(Atlas, ProfilePackerNestsTriangles) {
+    Scene scene;
+    const auto white = add_material(scene, "white", Rgb(0.5, 0.5, 0.5));
+    for (int i = 0; i < 36; ++i) {
+        Polygon p;
+        p.vertices = {{3.0 * i, 0, 0}, {3.0 * i + 1, 0, 0}, {3.0 * i, 1, 0}};
+        p.name = "triangle" + std::to_string(i);
+        p.material = white;
+        scene.polygons.push_back(p);
+    }
+    const Bake b = bake(scene, {.texels_per_metre = 20, .size = 128, .padding = 2});
+    EXPECT_EQ(b.layout.packer, AtlasPacker::profiles);
+    EXPECT_EQ(b.layout.atlas_count, 1);
+    expect_valid_layout(b.charts, b.layout, b.atlases);
+    expect_no_flips(b.charts, b.layout);
+    std::printf("36 right triangles (1 m legs) at 20 texels/m in 128² atlases: %d atlas(es) "
+                "(rectangles need 2), coverage of the first %.4f\n",
+                b.layout.atlas_count, b.layout.coverage[0]);
 }
 
 TEST(Atlas, ChartTooLargeIsScaledDownToFit) {

@@ -44,11 +44,18 @@ struct ChartPlacement {
     std::vector<Vec2> texel_uv;
 };
 
+/// \brief Which packer made a layout (pack_atlases keeps the denser).
+enum class AtlasPacker {
+    rectangles, ///< stb_rect_pack's skyline packer on the charts' padded bounding rectangles
+    profiles,   ///< our skyline packer on the charts' covered texels (column profiles)
+};
+
 /// \brief Charts placed in atlases.
 struct AtlasLayout {
     int size = 0;    ///< AtlasSettings::size
     int padding = 0; ///< AtlasSettings::padding
     int atlas_count = 0;
+    AtlasPacker packer = AtlasPacker::rectangles;
     std::vector<ChartPlacement> placements; ///< per chart, in the order of Charts::charts
     /// Per atlas: the fraction of its texels that a chart covers (conservatively: every texel a
     /// triangle overlaps, as rasterize() lists them).
@@ -56,13 +63,14 @@ struct AtlasLayout {
 };
 
 /// \brief Rotates each generated chart to its minimum-area bounding rectangle (imported ones
-///        keep their axes), scales it to the texel
-///        density, aligns it to the texel grid and packs the rectangles (with padding) into as
-///        many atlases as needed with stb_rect_pack's skyline packer; both 90° orientations
-///        (landscape, portrait) and both skyline heuristics are tried and the layout with the
-///        fewest atlases, then the fullest, is kept. A chart too large for one atlas is scaled
-///        down until it fits, with a warning. Throws ConfigError on a density ≤ 0, a size
-///        < 1 or > 8192, or a negative padding. Deterministic.
+///        keep their axes), scales it to the texel density and aligns it to the texel grid;
+///        then packs the charts, with padding, into as many atlases as needed twice: with
+///        stb_rect_pack on their bounding rectangles (both 90° orientation policies and both
+///        skyline heuristics, the best kept) and with our skyline packer on their covered
+///        texels; the layout with the fewest atlases, then the lowest use of the last one, is
+///        kept (AtlasLayout::packer). A chart too large for one atlas is scaled down until it
+///        fits, with a warning. Throws ConfigError on a density ≤ 0, a size < 1 or > 8192, or
+///        a padding < 0 or leaving no room. Deterministic.
 AtlasLayout pack_atlases(const Charts& charts, const AtlasSettings& settings, const Context& ctx);
 
 } // namespace penumbra::lightmap

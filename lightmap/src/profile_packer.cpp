@@ -62,13 +62,17 @@ public:
     // The lowest place for the profile (then leftmost), if it fits.
     std::optional<Spot> lowest(const Profile& p) const {
         std::optional<Spot> best;
+        // Rows from which a spot is no better than the best so far (or does not fit).
+        int limit = size_ - padding_ - p.height + 1;
         for (int x = padding_; x + p.width <= size_ - padding_; ++x) {
             int y = padding_;
-            for (int c = 0; c < p.width; ++c)
+            for (int c = 0; c < p.width && y < limit; ++c)
                 if (p.bottom[std::size_t(c)] < p.height)
                     y = std::max(y, sky_[std::size_t(x + c)] - p.bottom[std::size_t(c)]);
-            if (y + p.height <= size_ - padding_ && (!best || y < best->y))
+            if (y < limit) {
                 best = Spot{x, y};
+                limit = y;
+            }
         }
         return best;
     }

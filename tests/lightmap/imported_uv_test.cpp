@@ -70,6 +70,16 @@ TEST(ImportedUv, WithoutTexcoord1ThereIsNoLightmapUv) {
     EXPECT_TRUE(load_triangle(false).polygons[0].lightmap_uv.empty());
 }
 
+TEST(ImportedUv, ValidationRejectsAMismatchedOrNonFiniteUvSet) {
+    Scene scene = load_triangle(true);
+    scene.polygons[0].lightmap_uv.pop_back();
+    expect_one_line_input_error([&] { validate_scene(scene); },
+                                {"panel", "has 2 lightmap UVs for 3 vertices"}, "short UV set");
+    scene.polygons[0].lightmap_uv = {{0, 0}, {1, 0}, {0, std::nan("")}};
+    expect_one_line_input_error([&] { validate_scene(scene); },
+                                {"panel", "lightmap UV 3 is not finite"}, "NaN UV");
+}
+
 TEST(ImportedUv, GltfTexcoord1BecomesOneImportedChart) {
     const Scene scene = load_triangle(true);
     const Context ctx = quiet_context();

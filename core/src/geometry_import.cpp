@@ -44,6 +44,17 @@ Material convert_material(const aiMaterial& source, unsigned index) {
     return material;
 }
 
+// The second UV channel of the face's corners. assimp flips v (1 − v) on import to its
+// bottom-left origin; flipping back gives glTF's top-left one (Polygon::lightmap_uv).
+std::vector<Vec2> lightmap_uv(const aiMesh& mesh, const aiFace& face) {
+    std::vector<Vec2> uv;
+    for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        const aiVector3D& t = mesh.mTextureCoords[1][face.mIndices[k]];
+        uv.push_back({double(t.x), 1.0 - double(t.y)});
+    }
+    return uv;
+}
+
 /// Walks the node tree, accumulating transforms, and emits one Polygon per face of three or
 /// more vertices.
 class PolygonCollector {
@@ -86,10 +97,15 @@ private:
                     p = transform * p;
                 polygon.vertices.emplace_back(p.x * scale_, p.y * scale_, p.z * scale_);
             }
+            if (mesh.HasTextureCoords(1))
+                polygon.lightmap_uv = lightmap_uv(mesh, face);
             // A mirror turns counter-clockwise into clockwise; reversing the order (keeping
             // vertex 1 first) restores the file's front side.
-            if (mirrored)
+            if (mirrored) {
                 std::reverse(polygon.vertices.begin() + 1, polygon.vertices.end());
+                if (!polygon.lightmap_uv.empty())
+                    std::reverse(polygon.lightmap_uv.begin() + 1, polygon.lightmap_uv.end());
+            }
             polygons_.push_back(std::move(polygon));
         }
     }

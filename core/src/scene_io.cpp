@@ -277,6 +277,13 @@ void validate_polygon(const Scene& scene, const Polygon& polygon) {
                          fmt::format("vertex {} {}", i + 1, outside_world(polygon.vertices[i])));
         box.extend(polygon.vertices[i]);
     }
+    if (!polygon.lightmap_uv.empty() && polygon.lightmap_uv.size() != count)
+        fail_polygon(
+            scene, polygon,
+            fmt::format("has {} lightmap UVs for {} vertices", polygon.lightmap_uv.size(), count));
+    for (std::size_t i = 0; i < polygon.lightmap_uv.size(); ++i)
+        if (!std::isfinite(polygon.lightmap_uv[i].x) || !std::isfinite(polygon.lightmap_uv[i].y))
+            fail_polygon(scene, polygon, fmt::format("lightmap UV {} is not finite", i + 1));
     if (polygon.material >= scene.materials.size())
         fail_polygon(scene, polygon,
                      fmt::format("material index {} is out of range ({} materials)",

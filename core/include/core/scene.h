@@ -24,6 +24,10 @@ struct Polygon {
     std::uint32_t material = 0; ///< index into Scene::materials
     std::string name;           ///< object name from the file, for messages and output
     std::string source;         ///< "file:face-index" for messages
+    /// The file's lightmap UV per vertex (glTF TEXCOORD_1: assimp's second UV channel), in
+    /// glTF's convention: u right, v down, (0, 0) at the image's top-left. Empty when the file
+    /// has none (OBJ has one UV set only: its objects always get generated charts).
+    std::vector<Vec2> lightmap_uv;
 };
 
 /// \brief A sensor: a point and the normal of the receiving plane.

@@ -102,6 +102,11 @@ Rgb Bsdf::eval(const Vec3& wo_world, const Vec3& wi_world) const {
         lobes_);
 }
 
+Rgb Bsdf::f(const Vec3& wo, const Vec3& wi) const {
+    const double cos_i = std::abs(dot(wi, frame_.n));
+    return cos_i > 0 ? eval(wo, wi) / float(cos_i) : Rgb{};
+}
+
 double Bsdf::pdf(const Vec3& wo_world, const Vec3& wi_world) const {
     return std::visit(
         [&](const auto& lobe) -> double {

@@ -227,6 +227,26 @@ TEST_P(GlossySampling, ReflectsAtMostWhatArrives) {
     }
 }
 
+// Helmholtz reciprocity f(wo, wi) = f(wi, wo), in a frame tilted away from the world axes,
+// on both sides of a two-sided material; no light passes to the other side.
+TEST_P(GlossySampling, ReciprocalInATiltedFrame) {
+    const Vec3 n = normalize(Vec3(0.3, -0.5, 0.8));
+    const Bsdf bsdf(GetParam().material, n);
+    const Frame frame = Frame::from_normal(n);
+    Pcg32 rng = Pcg32::for_stream(RngPurpose::pixel_sample, 28, 300, 0, 1);
+    for (int k = 0; k < 500; ++k) {
+        const double side = k % 2 ? 1.0 : -1.0;
+        const Vec3 a =
+            frame.to_world(direction(side * rng.next_double(), 2 * k_pi * rng.next_double()));
+        const Vec3 b =
+            frame.to_world(direction(side * rng.next_double(), 2 * k_pi * rng.next_double()));
+        const Rgb fab = bsdf.f(a, b), fba = bsdf.f(b, a);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(fab[c], fba[c], 1e-4 * (1.0 + fab[c]));
+        EXPECT_TRUE(bsdf.eval(a, b - n * (2 * dot(b, n))).is_black()) << "through the surface";
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Bsdf, GlossySampling, testing::ValuesIn(glossy_materials()),
                          [](const auto& info) { return test::case_name(info.param.name); });
 
@@ -234,6 +254,9 @@ TEST(Bsdf, LambertAlbedoIsItsReflectance) {
     Material m;
     m.reflectance = Rgb(0.8f, 0.5f, 0.2f);
     const Bsdf bsdf(m, k_normal);
+    const Rgb f = bsdf.f(view(30), view(70));
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(f[c], m.reflectance[c] / k_pi, 1e-7);
     for (const double theta : {0.0, 45.0, 85.0, 130.0}) {
         const Rgb a = albedo_by_quadrature(bsdf, view(theta), 800, 64);
         for (int c = 0; c < 3; ++c)

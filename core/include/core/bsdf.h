@@ -99,7 +99,8 @@ struct MirrorLobe {
 };
 
 /// \brief A smooth dielectric interface: Fresnel reflection and refraction, total internal
-///        reflection; \p transmittance multiplies each refraction.
+///        reflection; \p transmittance multiplies each refraction. Dielectric::solid does not
+///        change the interface: it tells the renderer how to follow a ray inside.
 struct DielectricLobe {
     double ior = 1.5; ///< n_inside / n_outside
     Rgb transmittance{1.0f};
@@ -122,11 +123,17 @@ public:
 
     /// f(wo, wi) |cos θi| of the non-delta lobes; 0 for a delta-only BSDF.
     Rgb eval(const Vec3& wo, const Vec3& wi) const;
+    /// f(wo, wi) alone, for density estimation (photons arrive with their own cosine); 0 at
+    /// grazing wi and for a delta-only BSDF.
+    Rgb f(const Vec3& wo, const Vec3& wi) const;
     /// Solid-angle density with which sample() draws wi from wo; 0 for a delta-only BSDF.
     double pdf(const Vec3& wo, const Vec3& wi) const;
-    /// Draws wi: \p u_lobe ∈ [0, 1) chooses a lobe (by the lobes' albedos from wo), \p u
-    /// ∈ [0, 1)² the direction within it. None when nothing scatters (a direction below the
-    /// horizon, the back of a one-sided material, a zero weight).
+    /// Draws wi: \p u_lobe ∈ [0, 1) chooses a lobe, \p u ∈ [0, 1)² the direction within it.
+    /// The choice: a plastic's coat with probability E / (E + ρ (1 − E)) (E the coat's albedo
+    /// from wo, channels averaged), else its base; a dielectric reflects with probability F
+    /// (Fresnel at wo), else refracts; thin glass reflects with probability R / (R + T)
+    /// (channel means at wo). None when nothing scatters (a direction below the horizon, the
+    /// back of a one-sided material, a zero weight).
     std::optional<BsdfSample> sample(const Vec3& wo, double u_lobe, const Vec2& u) const;
 
     /// Whether every lobe is a delta (mirror, dielectric, thin glass): eval and pdf are 0.

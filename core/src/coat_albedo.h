@@ -14,7 +14,7 @@ namespace penumbra {
 ///        that the plastic's base integrates to exactly ρ (1 − E(μo))).
 class CoatAlbedo {
 public:
-    /// The tables, built on first use (about 0.1 s; immutable afterwards).
+    /// The tables, built on first use (about 0.5 s on one core; immutable afterwards).
     static const CoatAlbedo& tables();
 
     /// E(μ) per channel.

@@ -19,30 +19,13 @@
 #include "core/error.h"
 #include "core/files.h"
 
+#include "imported_material.h"
+
 namespace penumbra {
 
 namespace {
 
 using Transform = aiMatrix4x4t<double>;
-
-Material convert_material(const aiMaterial& source, unsigned index) {
-    Material material;
-    aiString name;
-    if (source.Get(AI_MATKEY_NAME, name) == aiReturn_SUCCESS && name.length > 0)
-        material.name = name.C_Str();
-    else
-        material.name = fmt::format("material_{}", index);
-    aiColor3D color;
-    if (source.Get(AI_MATKEY_COLOR_DIFFUSE, color) == aiReturn_SUCCESS)
-        material.reflectance = Rgb(color.r, color.g, color.b);
-    // OBJ `Ke` and glTF `emissiveFactor` both arrive here (checked with assimp 5.2.5).
-    if (source.Get(AI_MATKEY_COLOR_EMISSIVE, color) == aiReturn_SUCCESS)
-        material.emission = Rgb(color.r, color.g, color.b);
-    float strength = 1.0f; // glTF KHR_materials_emissive_strength
-    if (source.Get(AI_MATKEY_EMISSIVE_INTENSITY, strength) == aiReturn_SUCCESS)
-        material.emission *= strength;
-    return material;
-}
 
 // The second UV channel of the face's corners. assimp flips v (1 − v) on import to its
 // bottom-left origin; flipping back gives glTF's top-left one (Polygon::lightmap_uv).
@@ -81,6 +64,9 @@ private:
         const bool mirrored = transform.Determinant() < 0;
         // 0 · NaN is NaN: an identity product would smear one bad coordinate over all three.
         const bool identity = transform == Transform();
+        // Normals transform by the inverse transpose (a non-uniform scale tilts them).
+        Transform normal_transform = transform;
+        normal_transform.Inverse().Transpose();
         for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
             const aiFace& face = mesh.mFaces[f];
             if (face.mNumIndices < 3)
@@ -99,15 +85,38 @@ private:
             }
             if (mesh.HasTextureCoords(1))
                 polygon.lightmap_uv = lightmap_uv(mesh, face);
+            if (mesh.HasNormals())
+                polygon.normals = face_normals(mesh, face, normal_transform);
             // A mirror turns counter-clockwise into clockwise; reversing the order (keeping
             // vertex 1 first) restores the file's front side.
             if (mirrored) {
                 std::reverse(polygon.vertices.begin() + 1, polygon.vertices.end());
                 if (!polygon.lightmap_uv.empty())
                     std::reverse(polygon.lightmap_uv.begin() + 1, polygon.lightmap_uv.end());
+                if (!polygon.normals.empty())
+                    std::reverse(polygon.normals.begin() + 1, polygon.normals.end());
             }
             polygons_.push_back(std::move(polygon));
         }
+    }
+
+    /// The vertex normals of \p face, through \p transform (its 3 × 3 part), normalised;
+    /// none (flat) if one is zero or not finite (assimp fills a face without `vn` in a mesh
+    /// with normals with zeros).
+    static std::vector<Vec3> face_normals(const aiMesh& mesh, const aiFace& face,
+                                          const Transform& transform) {
+        std::vector<Vec3> normals;
+        normals.reserve(face.mNumIndices);
+        for (unsigned k = 0; k < face.mNumIndices; ++k) {
+            const aiVector3D& n = mesh.mNormals[face.mIndices[k]];
+            const Transform& t = transform;
+            const Vec3 v(t.a1 * n.x + t.a2 * n.y + t.a3 * n.z, t.b1 * n.x + t.b2 * n.y + t.b3 * n.z,
+                         t.c1 * n.x + t.c2 * n.y + t.c3 * n.z);
+            if (!(is_finite(v) && length(v) > 0))
+                return {};
+            normals.push_back(normalize(v));
+        }
+        return normals;
     }
 
     const aiScene& scene_;
@@ -136,7 +145,8 @@ ImportedGeometry collect_materials(const aiScene& scene, std::vector<Polygon> po
     for (unsigned i = 0; i < scene.mNumMaterials; ++i) {
         if (!used[i])
             continue;
-        Material material = convert_material(*scene.mMaterials[i], i);
+        Material material =
+            import_material(*scene.mMaterials[i], i, material_convention(path), path);
         const std::string base = material.name;
         for (int k = 2; names.count(material.name) > 0; ++k)
             material.name = fmt::format("{}#{}", base, k);

@@ -77,9 +77,16 @@ std::optional<ThinGlass> glazing_of(const Material& m) {
     return std::nullopt;
 }
 
+Rgb diffuse_reflectance(const Material& m) {
+    if (!m.lobe)
+        return m.reflectance;
+    const auto* glossy = std::get_if<GgxGlossy>(&*m.lobe);
+    return glossy && glossy->diffuse_base ? m.reflectance : Rgb{};
+}
+
 RadiosityResponse radiosity_response(const Material& m) {
     RadiosityResponse r;
-    r.reflectance = m.reflectance;
+    r.reflectance = diffuse_reflectance(m);
     r.emission = m.emission;
     r.two_sided = m.two_sided;
     r.emission_two_sided = m.emission_two_sided;

@@ -33,6 +33,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+void check(bool ok, const Scene& scene, const std::string& key, const std::string& what);
+
 std::string resolve(const std::string& base_dir, const std::string& file) {
     return (fs::path(base_dir) / file).string(); // an absolute `file` replaces base_dir
 }
@@ -123,11 +125,46 @@ void apply_materials(Scene& scene, const std::vector<MaterialSpec>& specs) {
             material.two_sided = *spec.two_sided;
         if (spec.emission_two_sided)
             material.emission_two_sided = *spec.emission_two_sided;
-        if (spec.thin_glass) {
-            material.reflectance = Rgb{}; // a pane reflects only specularly
-            material.lobe = *spec.thin_glass;
+        if (spec.lobe) {
+            material.lobe = *spec.lobe;
+            // A metal, a mirror or glass reflects only through its lobe.
+            if (material.lobe && !spec.reflectance)
+                material.reflectance = diffuse_reflectance(material);
         }
     }
+}
+
+/// The top-level `emission_two_sided`, for the materials whose entry does not give theirs.
+void apply_default_emission_sides(Scene& scene, const SceneSpec& spec) {
+    if (!spec.emission_two_sided)
+        return;
+    for (Material& material : scene.materials) {
+        const auto own =
+            std::find_if(spec.materials.begin(), spec.materials.end(), [&](const MaterialSpec& m) {
+                return m.name == material.name && m.emission_two_sided;
+            });
+        if (own == spec.materials.end())
+            material.emission_two_sided = *spec.emission_two_sided;
+    }
+}
+
+/// `smooth_objects`: only the listed objects keep their vertex normals; each must have some.
+void apply_smooth_objects(Scene& scene, const std::optional<std::vector<std::string>>& names) {
+    if (!names)
+        return;
+    std::vector<bool> smooth(names->size(), false);
+    for (Polygon& polygon : scene.polygons) {
+        const auto found = std::find(names->begin(), names->end(), polygon.name);
+        if (found == names->end())
+            polygon.normals.clear();
+        else if (!polygon.normals.empty())
+            smooth[std::size_t(found - names->begin())] = true;
+    }
+    for (std::size_t i = 0; i < names->size(); ++i)
+        check(smooth[i], scene, fmt::format("smooth_objects[{}]", i),
+              fmt::format("no polygon of an object named '{}' has vertex normals in its geometry "
+                          "file",
+                          (*names)[i]));
 }
 
 void add_inline_polygons(Scene& scene, const std::vector<PolygonSpec>& specs) {
@@ -295,6 +332,15 @@ void validate_polygon(const Scene& scene, const Polygon& polygon) {
         fail_polygon(scene, polygon,
                      fmt::format("vertex {} repeats vertex {}: a face visits each point once",
                                  repeat->second + 1, repeat->first + 1));
+    if (!polygon.normals.empty() && polygon.normals.size() != count)
+        fail_polygon(
+            scene, polygon,
+            fmt::format("has {} vertex normals for {} vertices", polygon.normals.size(), count));
+    for (std::size_t i = 0; i < polygon.normals.size(); ++i)
+        if (!(is_finite(polygon.normals[i]) && std::abs(length(polygon.normals[i]) - 1) < 1e-6))
+            fail_polygon(scene, polygon,
+                         fmt::format("vertex normal {} {} is not a finite unit vector", i + 1,
+                                     format_vec(polygon.normals[i])));
 }
 
 /// The largest radiance (W/(sr·m²)), intensity (W/sr) or irradiance (W/m²) a source may have:
@@ -331,8 +377,42 @@ void validate_diffuse_transmittance(const Scene& scene, const Material& m, const
           "diffuse transmission takes a diffuse material, not thin glass or another lobe");
 }
 
+bool in_unit_range(const Rgb& c) {
+    return c.r >= 0 && c.r <= 1 && c.g >= 0 && c.g <= 1 && c.b >= 0 && c.b <= 1;
+}
+
+/// The same ranges as the scene file's material types (scene_json.cpp), for materials built in
+/// code or imported.
+void validate_lobe(const Scene& scene, const Lobe& lobe, const std::string& key) {
+    const auto check_ior = [&](double ior, const char* what) {
+        check(ior >= 1 && ior <= 10, scene, key + ".ior",
+              fmt::format("{} must be in [1, 10], got {}", what, ior));
+    };
+    const auto check_colour = [&](const Rgb& c, const char* name) {
+        check(in_unit_range(c), scene, key + "." + name,
+              "must be in [0, 1] per channel, got " + format_rgb(c));
+    };
+    if (const auto* g = std::get_if<GgxGlossy>(&lobe)) {
+        check(g->alpha > 0 && g->alpha <= 1, scene, key + ".alpha",
+              fmt::format("must be in (0, 1] (GGX's α), got {}", g->alpha));
+        check_colour(g->specular, "specular");
+        if (const auto* f = std::get_if<FresnelDielectric>(&g->fresnel))
+            check_ior(f->ior, "the Fresnel factor's refractive index");
+    } else if (const auto* mirror = std::get_if<Mirror>(&lobe)) {
+        check_colour(mirror->colour, "specular");
+    } else if (const auto* d = std::get_if<Dielectric>(&lobe)) {
+        check_ior(d->ior, "the refractive index");
+        check_colour(d->transmittance, "transmittance");
+    } else if (const auto* glass = std::get_if<ThinGlass>(&lobe)) {
+        check_ior(glass->ior, "the refractive index");
+        check_colour(glass->transmissivity, "transmissivity");
+    }
+}
+
 void validate_material(const Scene& scene, const Material& m) {
     const std::string key = "materials." + m.name;
+    if (m.lobe)
+        validate_lobe(scene, *m.lobe, key);
     bool reflectance_ok = true;
     for (int c = 0; c < 3; ++c)
         reflectance_ok = reflectance_ok && m.reflectance[c] >= 0 && m.reflectance[c] < 1;
@@ -446,6 +526,18 @@ void validate_settings(const Scene& scene) {
     check(solver.visibility_rays >= 1, scene, "solver.visibility_rays", "must be >= 1");
     check(std::isfinite(solver.row_cache_mb) && solver.row_cache_mb >= 0, scene,
           "solver.row_cache_mb", "must be >= 0");
+    const RenderSettings& render = scene.render;
+    check(render.max_bounces >= 0 && render.max_bounces <= 1024, scene, "render.max_bounces",
+          fmt::format("must be in [0, 1024], got {}", render.max_bounces));
+    check(render.filter_width_px >= 0.01 && render.filter_width_px <= 16, scene,
+          "render.filter_width_px",
+          fmt::format("must be in [0.01, 16] pixels, got {}", render.filter_width_px));
+    check(!scene.lightmap ||
+              (scene.lightmap->atlas_size >= 16 && scene.lightmap->atlas_size <= 16384),
+          scene, "lightmap.size", "must be in [16, 16384]");
+    check(scene.background.is_finite() && scene.background.r >= 0 && scene.background.g >= 0 &&
+              scene.background.b >= 0,
+          scene, "background", "must be finite and >= 0, got " + format_rgb(scene.background));
 }
 
 /// L = Φ / (π A) with A the area of every polygon of the material (twice if it emits from both
@@ -493,7 +585,9 @@ Scene parse_scene(const std::string& json_text, const std::string& file_name,
         add_geometry_file(scene, base_dir, file, spec.metres_per_unit, radiance);
     add_radiance_sources(scene, radiance.sources());
     apply_materials(scene, spec.materials);
+    apply_default_emission_sides(scene, spec);
     add_inline_polygons(scene, spec.polygons);
+    apply_smooth_objects(scene, spec.smooth_objects);
     if (spec.sensor_file) {
         const auto sensors =
             read_sensor_file(resolve(base_dir, *spec.sensor_file), spec.metres_per_unit);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <set>
+#include <span>
 #include <string_view>
 #include <utility>
 #include <variant>
@@ -261,24 +262,146 @@ ThinGlass parse_thin_glass(const Field& field) {
     return glass;
 }
 
+double number_in(const Field& field, double lo, double hi, const char* range); // defined below
+
+// ---- Material types (issue #28) ---------------------------------------------------------------
+
+/// The keys that only some material types take; each type lists its own.
+constexpr std::string_view k_type_keys[] = {"reflectance",
+                                            "diffuse_transmittance",
+                                            "alpha",
+                                            "specular",
+                                            "fresnel",
+                                            "ior",
+                                            "solid",
+                                            "transmittance",
+                                            "transmissivity",
+                                            "transmittance_normal"};
+
+struct MaterialType {
+    std::string_view name;
+    std::span<const std::string_view> keys; ///< of k_type_keys
+};
+
+constexpr std::string_view k_diffuse_keys[] = {"reflectance", "diffuse_transmittance"};
+constexpr std::string_view k_ggx_keys[] = {"alpha", "specular", "fresnel", "ior"};
+constexpr std::string_view k_plastic_keys[] = {"reflectance", "alpha", "specular", "fresnel",
+                                               "ior"};
+constexpr std::string_view k_mirror_keys[] = {"specular"};
+constexpr std::string_view k_glass_keys[] = {"ior", "solid", "transmittance"};
+constexpr std::string_view k_thin_glass_keys[] = {"transmissivity", "transmittance_normal", "ior"};
+
+constexpr MaterialType k_material_types[] = {
+    {"diffuse", k_diffuse_keys}, {"ggx", k_ggx_keys},     {"plastic", k_plastic_keys},
+    {"mirror", k_mirror_keys},   {"glass", k_glass_keys}, {"thin_glass", k_thin_glass_keys},
+};
+
+const MaterialType& material_type(const Field& field) {
+    const std::string name = field.has("type") ? field.child("type").string() : "diffuse";
+    for (const MaterialType& type : k_material_types)
+        if (type.name == name)
+            return type;
+    std::vector<std::string_view> names;
+    for (const MaterialType& type : k_material_types)
+        names.push_back(type.name);
+    field.child("type").fail(
+        fmt::format("unknown material type '{}' (known: {})", name, fmt::join(names, ", ")));
+}
+
+/// Each key of k_type_keys that \p field gives must be one of its type's.
+void check_type_keys(const Field& field, const MaterialType& type) {
+    for (const std::string_view key : k_type_keys) {
+        const std::string k(key);
+        if (field.has(k) && std::find(type.keys.begin(), type.keys.end(), key) == type.keys.end())
+            field.child(k).fail(fmt::format(
+                "is not a key of a '{}' material{} (its keys: {})", type.name,
+                field.has("type") ? "" : " (the default type)", fmt::join(type.keys, ", ")));
+    }
+}
+
+/// A colour with every channel in [0, 1].
+Rgb unit_rgb(const Field& field) {
+    const Rgb c = field.rgb();
+    for (int i = 0; i < 3; ++i)
+        if (!(c[i] >= 0 && c[i] <= 1))
+            field.fail(
+                fmt::format("must be in [0, 1] per channel, got ({}, {}, {})", c.r, c.g, c.b));
+    return c;
+}
+
+double ior_of(const Field& field, double fallback) {
+    return field.has("ior") ? number_in(field.child("ior"), 1.0, 10.0, "[1, 10]") : fallback;
+}
+
+/// `fresnel`: "none", "schlick" or "dielectric" (with `ior`, default 1.5); \p fallback when
+/// absent.
+Fresnel parse_fresnel(const Field& field, std::string_view fallback) {
+    const std::string name =
+        field.has("fresnel") ? field.child("fresnel").string() : std::string(fallback);
+    if (name != "dielectric" && field.has("ior"))
+        field.child("ior").fail("is only used with \"fresnel\": \"dielectric\"");
+    if (name == "none")
+        return FresnelNone{};
+    if (name == "schlick")
+        return FresnelSchlick{};
+    if (name == "dielectric")
+        return FresnelDielectric{ior_of(field, 1.5)};
+    field.child("fresnel").fail(
+        fmt::format("unknown fresnel '{}' (known: none, schlick, dielectric)", name));
+}
+
+/// "ggx" (a metal) and "plastic" (a coat over the diffuse `reflectance`).
+GgxGlossy parse_glossy(const Field& field, bool plastic) {
+    GgxGlossy g;
+    if (field.has("alpha")) {
+        const Field alpha = field.child("alpha");
+        g.alpha = alpha.number();
+        if (!(g.alpha > 0 && g.alpha <= 1))
+            alpha.fail(fmt::format("must be in (0, 1] (GGX's α), got {}", g.alpha));
+    }
+    if (field.has("specular"))
+        g.specular = unit_rgb(field.child("specular"));
+    g.fresnel = parse_fresnel(field, plastic ? "dielectric" : "none");
+    g.diffuse_base = plastic;
+    return g;
+}
+
+Dielectric parse_glass(const Field& field) {
+    Dielectric glass;
+    glass.ior = ior_of(field, glass.ior);
+    if (field.has("solid"))
+        glass.solid = field.child("solid").boolean();
+    if (field.has("transmittance"))
+        glass.transmittance = unit_rgb(field.child("transmittance"));
+    return glass;
+}
+
+/// The lobe of a `type`; none for "diffuse".
+std::optional<Lobe> parse_lobe(const Field& field, const MaterialType& type) {
+    if (type.name == "ggx" || type.name == "plastic")
+        return parse_glossy(field, type.name == "plastic");
+    if (type.name == "mirror")
+        return Mirror{field.has("specular") ? unit_rgb(field.child("specular")) : Rgb(1.0f)};
+    if (type.name == "glass")
+        return parse_glass(field);
+    if (type.name == "thin_glass")
+        return parse_thin_glass(field);
+    return std::nullopt;
+}
+
 MaterialSpec parse_material(const Field& field, const std::string& name) {
     field.expect_keys({"type", "reflectance", "emission", "emission_flux_lm", "emission_color",
                        "two_sided", "emission_two_sided", "transmissivity", "transmittance_normal",
-                       "ior", "diffuse_transmittance"});
+                       "ior", "alpha", "specular", "fresnel", "solid", "transmittance",
+                       "diffuse_transmittance"});
     if (name.empty())
         field.fail("a material name must not be empty");
     MaterialSpec spec;
     spec.name = name;
-    const std::string type = field.has("type") ? field.child("type").string() : "diffuse";
-    if (type != "diffuse" && type != "thin_glass")
-        field.child("type").fail(
-            fmt::format("unknown material type '{}' (known: diffuse, thin_glass)", type));
-    if (type == "thin_glass")
-        spec.thin_glass = parse_thin_glass(field);
-    else
-        for (const char* key : {"transmissivity", "transmittance_normal", "ior"})
-            if (field.has(key))
-                field.child(key).fail("is only used with \"type\": \"thin_glass\"");
+    const MaterialType& type = material_type(field);
+    check_type_keys(field, type);
+    if (field.has("type"))
+        spec.lobe = parse_lobe(field, type);
     if (field.has("reflectance"))
         spec.reflectance = field.child("reflectance").rgb();
     if (field.has("diffuse_transmittance"))
@@ -374,8 +497,6 @@ PointLight parse_point_light(const Field& field, double metres_per_unit) {
 }
 
 // ---- Daylight: site, sun positions from dates, sky (issue #30) --------------------------------
-
-double number_in(const Field& field, double lo, double hi, const char* range); // defined below
 
 /// The scene's compass and, if given, its site: what sun positions from dates and times need.
 struct Daylight {
@@ -877,12 +998,66 @@ SolverSettings parse_solver(const Field& field, double metres_per_unit) {
     return solver;
 }
 
+// "render": {"spp": n, "max_bounces": n, "pixel_filter": "box", "filter_width_px": w}; spp is
+// the camera's (as image.spp: give one of them).
+void parse_render(const Field& root, Scene& scene) {
+    const Field field = root.child("render");
+    field.expect_keys({"spp", "max_bounces", "pixel_filter", "filter_width_px"});
+    if (field.has("spp")) {
+        if (!scene.camera)
+            field.child("spp").fail("needs a 'camera'");
+        if (root.has("image") && root.child("image").has("spp"))
+            field.child("spp").fail("give 'image.spp' or 'render.spp', not both");
+        scene.camera->samples_per_pixel = int(field.child("spp").integer(1, 1 << 20));
+    }
+    RenderSettings& render = scene.render;
+    if (field.has("max_bounces"))
+        render.max_bounces = int(field.child("max_bounces").integer(0, 1024));
+    if (field.has("pixel_filter"))
+        render.pixel_filter = enum_value<PixelFilter>(field.child("pixel_filter"), "pixel filter");
+    if (field.has("filter_width_px"))
+        render.filter_width_px =
+            number_in(field.child("filter_width_px"), 0.01, 16.0, "[0.01, 16] pixels");
+}
+
+LightmapSettings parse_lightmap(const Field& field) {
+    field.expect_keys({"size"});
+    LightmapSettings lightmap;
+    if (field.has("size"))
+        lightmap.atlas_size = int(field.child("size").integer(16, 16384));
+    return lightmap;
+}
+
+Rgb parse_background(const Field& field) {
+    const Rgb c = field.rgb();
+    if (!(c.r >= 0 && c.g >= 0 && c.b >= 0))
+        field.fail(
+            fmt::format("must be >= 0 per channel (W/(sr·m²)), got ({}, {}, {})", c.r, c.g, c.b));
+    return c;
+}
+
+/// `smooth_objects`: object names, each at most once.
+std::vector<std::string> parse_smooth_objects(const Field& field) {
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < field.array_size(); ++i) {
+        const Field name = field.element(i);
+        names.push_back(name.string());
+        if (std::count(names.begin(), names.end(), names.back()) > 1)
+            name.fail(fmt::format("'{}' is listed twice", names.back()));
+    }
+    return names;
+}
+
 /// materials and polygons: what the geometry files are merged with.
 void parse_surfaces(const Field& root, SceneSpec& spec) {
     spec.geometry = parse_geometry_list(root);
     if (root.has("materials"))
         for (const auto& [name, field] : root.child("materials").members())
             spec.materials.push_back(parse_material(field, name));
+    if (root.has("emission_two_sided"))
+        spec.emission_two_sided = root.child("emission_two_sided").boolean();
+    if (root.has("smooth_objects"))
+        spec.smooth_objects = parse_smooth_objects(root.child("smooth_objects"));
     if (root.has("polygons")) {
         const Field polygons = root.child("polygons");
         for (std::size_t i = 0; i < polygons.array_size(); ++i)
@@ -920,6 +1095,17 @@ void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
         scene.mesher = parse_mesher(root.child("mesher"), scale);
     if (root.has("solver"))
         scene.solver = parse_solver(root.child("solver"), scale);
+    if (root.has("render"))
+        parse_render(root, scene);
+    if (root.has("lightmap"))
+        scene.lightmap = parse_lightmap(root.child("lightmap"));
+    if (root.has("background")) {
+        if (root.has("sky"))
+            root.child("background")
+                .fail("give 'background' or 'sky', not both (the sky is "
+                      "what rays leaving the scene see)");
+        scene.background = parse_background(root.child("background"));
+    }
 }
 
 } // namespace
@@ -927,9 +1113,12 @@ void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
 SceneSpec parse_scene_json(const std::string& text, const std::string& file_name) {
     const Json json = parse_json(text, file_name);
     const Field root(json, "", file_name);
-    root.expect_keys({"name", "units", "up", "geometry", "polygons", "materials", "point_lights",
-                      "sun", "site", "sky", "sensors", "grids", "camera", "image", "mesher",
-                      "solver"});
+    root.expect_keys({"name",          "units",     "up",           "geometry",
+                      "polygons",      "materials", "point_lights", "sun",
+                      "site",          "sky",       "sensors",      "grids",
+                      "camera",        "image",     "mesher",       "solver",
+                      "render",        "lightmap",  "background",   "emission_two_sided",
+                      "smooth_objects"});
     SceneSpec spec;
     spec.scene.file = file_name;
     if (root.has("name"))

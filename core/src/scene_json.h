@@ -22,7 +22,8 @@ struct MaterialSpec {
     std::optional<Rgb> emission_color; ///< only with emission_flux_lm
     std::optional<bool> two_sided;
     std::optional<bool> emission_two_sided;
-    std::optional<ThinGlass> thin_glass; ///< "type": "thin_glass"
+    /// Set when the entry gives `type`: the material's lobe (none for "diffuse").
+    std::optional<std::optional<Lobe>> lobe;
 };
 
 /// \brief A `polygons` entry, vertices already in metres.
@@ -50,12 +51,18 @@ struct GridSpec {
 
 /// \brief Everything the scene file says, before its files are read.
 struct SceneSpec {
-    /// name, file, point_lights, sun, inline sensors, camera, mesher and solver are final.
+    /// name, file, point_lights, sun, inline sensors, camera, mesher, solver, render,
+    /// lightmap and background are final.
     Scene scene;
     double metres_per_unit = 1.0;
     std::vector<std::string> geometry;      ///< as written, relative to the scene folder
     std::optional<std::string> sensor_file; ///< `sensors.file`, as written
     std::vector<MaterialSpec> materials;
+    /// Top-level `emission_two_sided`: for every material that does not give its own.
+    std::optional<bool> emission_two_sided;
+    /// `smooth_objects`: the object names whose polygons keep their vertex normals; unset =
+    /// every polygon that has them.
+    std::optional<std::vector<std::string>> smooth_objects;
     std::vector<PolygonSpec> polygons;
     std::vector<GridSpec> grids;
 };

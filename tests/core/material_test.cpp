@@ -92,16 +92,34 @@ TEST(RadiosityResponse, DiffuseMaterialAsIs) {
     m.emission = Rgb(4, 5, 6);
     m.two_sided = false;
     m.emission_two_sided = true;
-    for (const auto& lobe : {std::optional<Lobe>{}, std::optional<Lobe>{GgxGlossy{}},
-                             std::optional<Lobe>{Mirror{}}, std::optional<Lobe>{Dielectric{}}}) {
+    GgxGlossy plastic;
+    plastic.diffuse_base = true;
+    for (const auto& lobe : {std::optional<Lobe>{}, std::optional<Lobe>{plastic}}) {
         m.lobe = lobe;
         const RadiosityResponse r = radiosity_response(m);
-        EXPECT_EQ(r.reflectance, m.reflectance);
+        EXPECT_EQ(r.reflectance, m.reflectance); // a plastic's base is its diffuse part
         EXPECT_EQ(r.emission, m.emission);
         EXPECT_FALSE(r.two_sided);
         EXPECT_TRUE(r.emission_two_sided);
         EXPECT_TRUE(r.transmittance.is_black());
         EXPECT_TRUE(r.opaque());
+    }
+}
+
+// A metal, a mirror and a dielectric have no diffuse part: radiosity transports nothing off
+// them (what they reflect onto diffuse surfaces is the final gather's caustic term).
+TEST(RadiosityResponse, SpecularMaterialsHaveNoDiffusePart) {
+    Material m;
+    m.reflectance = Rgb(0.1f, 0.2f, 0.3f);
+    m.emission = Rgb(4, 5, 6);
+    for (const Lobe& lobe :
+         {Lobe{GgxGlossy{}}, Lobe{Mirror{}}, Lobe{Dielectric{}}, Lobe{ThinGlass{}}}) {
+        m.lobe = lobe;
+        const RadiosityResponse r = radiosity_response(m);
+        EXPECT_TRUE(r.reflectance.is_black());
+        EXPECT_TRUE(diffuse_reflectance(m).is_black());
+        EXPECT_EQ(r.emission, m.emission);
+        EXPECT_EQ(r.opaque(), !std::holds_alternative<ThinGlass>(lobe));
     }
 }
 

@@ -399,8 +399,8 @@ TEST(ThinGlassMaterial, BadKeysAreErrors) {
     expect_error(R"({"type": "thin_glass", "transmittance_normal": 0.95})",
                  "materials.glass.transmittance_normal");
     expect_error(R"({"type": "thin_glass", "transmissivity": 0.9, "ior": 1})", "(1, 10]");
-    expect_error(R"({"transmissivity": 0.9})", "only used with");
-    expect_error(R"({"type": "mirror"})", "unknown material type 'mirror'");
+    expect_error(R"({"transmissivity": 0.9})", "not a key of a 'diffuse' material");
+    expect_error(R"({"type": "chrome"})", "unknown material type 'chrome'");
 }
 
 } // namespace

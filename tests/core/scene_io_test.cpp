@@ -431,7 +431,8 @@ std::string triangle_gltf(const std::string& buffer) {
             {"name": "mirrored", "mesh": 0, "scale": [-2, 1, 1]}],
   "meshes": [{"name": "tri", "primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
   "materials": [{"name": "glow", "emissiveFactor": [1, 0.5, 0.25],
-                 "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.3, 0.4, 1]}}],
+                 "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.3, 0.4, 1],
+                                          "metallicFactor": 0}}],
   "buffers": [)json" +
            buffer + R"json(],
   "bufferViews": [{"buffer": 0, "byteLength": 36}],
@@ -600,9 +601,9 @@ TEST(SceneIo, MalformedJsonNamesTheLine) {
 
 TEST(SceneIo, UnknownKeysAreErrors) {
     const std::string dir = test::temp_dir("scene-unknown");
-    write_file(dir, "top.json", lamp_scene(R"json(, "emission_two_sided": false)json"));
+    write_file(dir, "top.json", lamp_scene(R"json(, "exposure": 1)json"));
     expect_input_error([&] { load_scene(dir + "/top.json"); },
-                       {"top.json", "'emission_two_sided'", "unknown key", "known: name, units"});
+                       {"top.json", "'exposure'", "unknown key", "known: name, units"});
     write_file(dir, "nested.json", R"json({
   "polygons": [{"material": "light", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]}],
   "materials": {"light": {"emision": [1, 1, 1]}}

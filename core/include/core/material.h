@@ -49,6 +49,8 @@ struct Dielectric {
     /// is followed through total internal reflection until it leaves. False: one interface,
     /// the medium unbounded behind it (a water surface).
     bool solid = true;
+    /// Factor on the light of each refraction, per channel in [0, 1] (MTL `Tf`): 1 = clear.
+    Rgb transmittance{1.0f};
 };
 
 /// \brief Thin glass as Radiance's `glass`: one surface standing for a pane's two parallel
@@ -96,7 +98,8 @@ struct Material {
     /// If set, the loader scales emission so that all polygons of this material together emit
     /// this luminous flux (lm); emission then holds the colour until scaling.
     std::optional<double> emission_flux_lm;
-    /// The non-diffuse part; no scene key sets it yet (issue #28).
+    /// The non-diffuse part (scene key `type`). A metal (GgxGlossy without diffuse_base), a
+    /// mirror, a dielectric and thin glass have no diffuse part: `reflectance` is ignored.
     std::optional<Lobe> lobe;
     /// Diffuse transmittance τ per channel: the fraction of the light arriving on either side
     /// that leaves the other side diffusely (Radiance's `trans`: blinds, diffusing glass).
@@ -120,6 +123,10 @@ struct RadiosityResponse {
     /// only such surfaces.
     bool opaque() const { return transmittance.is_black(); }
 };
+
+/// \brief The diffuse reflectance of \p m: `reflectance` without a lobe or under a coat
+///        ("plastic"), black for a metal, a mirror, a dielectric and thin glass.
+Rgb diffuse_reflectance(const Material& m);
 
 /// \brief The thin glass of \p m, if it is glazing.
 std::optional<ThinGlass> glazing_of(const Material& m);

@@ -28,6 +28,10 @@ struct Polygon {
     /// glTF's convention: u right, v down, (0, 0) at the image's top-left. Empty when the file
     /// has none (OBJ has one UV set only: its objects always get generated charts).
     std::vector<Vec2> lightmap_uv;
+    /// Shading normals (unit) per vertex, for the renderer to interpolate (issue #28): from the
+    /// geometry file's vertex normals, only on objects the scene shades smoothly
+    /// (`smooth_objects`); empty = flat. The mesher and the solver ignore them.
+    std::vector<Vec3> normals;
 };
 
 /// \brief A sensor: a point and the normal of the receiving plane.
@@ -180,6 +184,32 @@ struct SolverSettings {
     double row_cache_mb = 2048; ///< memory for cached form-factor rows
 };
 
+/// \brief The pixel filter of rendered images (RenderSettings::pixel_filter).
+enum class PixelFilter {
+    box,      ///< every sample in the footprint weighs the same
+    gaussian, ///< a Gaussian truncated to the footprint
+};
+inline constexpr EnumName<PixelFilter> k_pixel_filter_names[] = {
+    {"box", PixelFilter::box},
+    {"gaussian", PixelFilter::gaussian},
+};
+template <>
+inline constexpr std::span<const EnumName<PixelFilter>> k_enum_names<PixelFilter> =
+    k_pixel_filter_names;
+
+/// \brief Settings of `penumbra render` (scene key `render`, issue #28); its samples per pixel
+///        are Camera::samples_per_pixel.
+struct RenderSettings {
+    int max_bounces = 16; ///< most scattering events along a path
+    PixelFilter pixel_filter = PixelFilter::box;
+    double filter_width_px = 1.0; ///< width of the filter's square footprint, in pixels
+};
+
+/// \brief Lightmap baking (scene key `lightmap`, issue #29).
+struct LightmapSettings {
+    int atlas_size = 1024; ///< texels along each side of an atlas
+};
+
 struct Scene {
     std::string name;
     std::string file; ///< the scene file, for messages
@@ -193,6 +223,11 @@ struct Scene {
     std::optional<Camera> camera;
     MesherSettings mesher;
     SolverSettings solver;
+    RenderSettings render;
+    std::optional<LightmapSettings> lightmap; ///< set: `bake` writes lightmaps
+    /// Radiance W/(sr·m²) that the renderer's rays see where they leave the scene; it lights
+    /// nothing (the solver does not see it: give a `sky` for light from all around).
+    Rgb background;
 
     BBox bounds() const;
     /// Some polygon emits, or a point light, the sun or the sky has a non-zero intensity.

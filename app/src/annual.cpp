@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "annual_outputs.h"
 #include "core/error.h"
 
 #include "mesher/mesher.h"
@@ -137,6 +138,40 @@ AnnualResult run_annual(const Scene& scene, const AnnualOptions& options, const 
     r.grids = grid_metrics_of(scene, r, options.thresholds);
     r.hours_seconds = sky_seconds + seconds_since(t1);
     return r;
+}
+
+void check_annual_outputs(const Scene& scene, const AnnualWriteOptions& write) {
+    heat_map_sensor(scene, write.heat_map_sensor);
+}
+
+void write_annual(const Scene& scene, const AnnualOptions& options, const AnnualResult& result,
+                  const AnnualWriteOptions& write, const Context& ctx) {
+    AnnualResults out;
+    out.scene = &scene;
+    out.weather = &result.weather;
+    out.occupied = result.occupied;
+    out.thresholds = options.thresholds;
+    out.occupancy = options.occupancy;
+    out.illuminance_lx = result.illuminance_lx;
+    out.direct_sun_lx = result.direct_sun_lx;
+    out.sensors = result.sensors;
+    out.grids = result.grids;
+    const Location& site = result.weather.site.location;
+    out.run = {
+        {"weather",
+         {{"file", result.weather.file},
+          {"city", result.weather.site.city},
+          {"latitude_deg", site.latitude_deg},
+          {"longitude_deg", site.longitude_deg},
+          {"time_zone_h", site.time_zone_h}}},
+        {"sky_patches", {{"subdivision", options.subdivision}, {"count", result.patches}}},
+        {"sun_bins", {{"subdivision", options.sun_subdivision}, {"count", result.sun_bins}}},
+        {"coefficients",
+         {{"nodes", result.coefficients.nodes}, {"links", result.coefficients.links}}},
+        {"seconds",
+         {{"coefficients", result.coefficient_seconds}, {"hours", result.hours_seconds}}},
+    };
+    write_annual_outputs(out, {write.directory, write.hourly, write.heat_map_sensor}, ctx);
 }
 
 } // namespace penumbra::app

@@ -298,6 +298,10 @@ void write_annual_outputs(const AnnualResults& r, const AnnualOutputOptions& opt
     const std::optional<std::size_t> heat_map = heat_map_sensor(*r.scene, options.heat_map_sensor);
     const std::string& dir = options.directory;
     check_output_dir(dir);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec)
+        throw ConfigError(fmt::format("cannot create output folder '{}': {}", dir, ec.message()));
     const auto path = [&](const std::string& name) { return (fs::path(dir) / name).string(); };
     write_text_file(path("annual.csv"), annual_csv(r));
     write_text_file(path("summary.json"), annual_summary_json(r));

@@ -1,17 +1,20 @@
 // penumbra: the command-line interface. Parses flags, builds the context, runs the pipeline
 // and maps errors to exit codes; nothing else lives here.
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <memory>
 #include <new>
+#include <sstream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include "app/annual.h"
 #include "app/pipeline.h"
 #include "cli_checks.h"
 #include "core/error.h"
@@ -71,6 +74,16 @@ struct BakeFlags {
     std::string reuse;
     bool no_state = false;
     std::int64_t series_every_shots = 0;
+};
+
+/// `penumbra annual`'s own flags; the scene and element flags are BakeFlags'.
+struct AnnualFlags {
+    BakeFlags scene;
+    app::AnnualOptions options;
+    app::AnnualWriteOptions write;
+    std::string heat_map;
+    std::string occupancy;
+    bool from_illuminance = false;
 };
 
 Context make_context(const CommonFlags& flags) {
@@ -198,6 +211,44 @@ int run_daylight(const BakeFlags& flags, const CommonFlags& common) {
     return k_ok;
 }
 
+// "8-18": occupied from 8:00 to 18:00 (EPW hours 9 to 18).
+annual::Occupancy parse_occupancy(const std::string& text) {
+    annual::Occupancy o;
+    char dash = 0;
+    std::istringstream in(text);
+    if (!(in >> o.start_hour >> dash >> o.end_hour) || dash != '-' || !in.eof() ||
+        o.start_hour < 0 || o.end_hour > 24 || o.start_hour >= o.end_hour)
+        throw ConfigError(fmt::format(
+            "--occupancy '{}': give START-END in whole hours, 0 <= START < END <= 24", text));
+    return o;
+}
+
+int run_annual(AnnualFlags& flags, const CommonFlags& common) {
+    Context ctx = make_context(common);
+    const Scene scene = load_with_overrides(flags.scene);
+    check_output_dir(flags.scene.output);
+    flags.write.directory = flags.scene.output;
+    if (!flags.heat_map.empty())
+        flags.write.heat_map_sensor = flags.heat_map;
+    if (!flags.occupancy.empty())
+        flags.options.occupancy = parse_occupancy(flags.occupancy);
+    if (flags.from_illuminance)
+        flags.options.sky.input = annual::WeatherInput::illuminance;
+    app::check_annual_outputs(scene, flags.write);
+    const app::AnnualResult result = app::run_annual(scene, flags.options, ctx);
+    app::write_annual(scene, flags.options, result, flags.write, ctx);
+    ctx.info("wrote {}: {} sensors, {} hours ({} occupied), {} sky patches and {} sun bins; "
+             "coefficients {:.1f} s, hours and metrics {:.1f} s",
+             flags.write.directory, scene.sensors.size(), result.weather.hours.size(),
+             std::count(result.occupied.begin(), result.occupied.end(), true), result.patches,
+             result.sun_bins, result.coefficient_seconds, result.hours_seconds);
+    for (std::size_t g = 0; g < scene.grids.size(); ++g)
+        ctx.info("grid {}: sDA {:.1f} %, ASE {:.1f} %", scene.grids[g].name,
+                 100 * result.grids[g].spatial_daylight_autonomy,
+                 100 * result.grids[g].annual_sunlight_exposure);
+    return k_ok;
+}
+
 int run_view(const app::ViewRequest& request, const CommonFlags& common) {
     Context ctx = make_context(common);
     ctx.progress = nullptr;
@@ -249,6 +300,50 @@ int main(int argc, char** argv) {
                     "sensors.csv, the grids' statistics, plans and points, mesh.vtu");
     add_solve_flags(*daylight_cmd, daylight);
     add_common_flags(*daylight_cmd, common);
+    AnnualFlags annual;
+    auto* annual_cmd = cli.add_subcommand(
+        "annual", "a year of hourly illuminance at the scene's sensors from an EPW weather file "
+                  "(daylight coefficients) and the climate-based metrics: DA, UDI, sDA, ASE");
+    annual_cmd->add_option("scene", annual.scene.scene, "scene file (JSON, docs/scene-format.md)")
+        ->required();
+    annual_cmd->add_option("-o,--output", annual.scene.output,
+                           "output folder (created if missing)");
+    annual_cmd->add_option("--weather", annual.options.weather_file, "EPW weather file")
+        ->required();
+    annual_cmd
+        ->add_option("--patches", annual.options.subdivision,
+                     "sky patches: 1 = Tregenza's 145 and the ground (default), 2–4 = Reinhart's "
+                     "subdivisions (577, 1297, 2305 and the ground)")
+        ->check(CLI::Range(1, 4));
+    annual_cmd
+        ->add_option("--sun-bins", annual.options.sun_subdivision,
+                     "the suns' reflected light is solved once per Reinhart patch of this "
+                     "subdivision that the year's suns fall in (default 2: about 6° across)")
+        ->check(CLI::Range(1, 8));
+    annual_cmd->add_option("--occupancy", annual.occupancy,
+                           "occupied hours START-END of every day, local standard time "
+                           "(default 8-18: EPW hours 9 to 18)");
+    annual_cmd
+        ->add_option("--ground-reflectance", annual.options.sky.ground_reflectance,
+                     "the ground's reflectance (default 0.2)")
+        ->check(CLI::Range(0.0, 1.0));
+    annual_cmd->add_flag("--from-illuminance", annual.from_illuminance,
+                         "build each hour's sky from the file's illuminance fields rather than "
+                         "its irradiance with Perez's efficacies");
+    annual_cmd->add_flag("--hourly", annual.write.hourly,
+                         "also write every hour's illuminance (hourly_illuminance.f32 + .json)");
+    annual_cmd->add_option("--heat-map", annual.heat_map,
+                           "the sensor of the hour × day heat map (default: the first grid's "
+                           "first point)");
+    annual_cmd
+        ->add_option("--max-edge", annual.scene.max_edge_m,
+                     "element size in metres (overrides mesher.max_edge_length)")
+        ->check(app::positive_number());
+    annual_cmd
+        ->add_option("--epsilon", annual.scene.epsilon,
+                     "refinement threshold of the coefficients' links (overrides solver.epsilon)")
+        ->check(app::number_in(1e-12, 1.0));
+    add_common_flags(*annual_cmd, common);
     std::string validate_scene_path;
     auto* validate_cmd = cli.add_subcommand("validate", "load and check a scene, write nothing");
     validate_cmd->add_option("scene", validate_scene_path, "scene file")->required();
@@ -287,6 +382,8 @@ int main(int argc, char** argv) {
             return run_bake(bake, common);
         if (*daylight_cmd)
             return run_daylight(daylight, common);
+        if (*annual_cmd)
+            return run_annual(annual, common);
         if (*view_cmd)
             return run_view(view, common);
         return run_validate(validate_scene_path, common);

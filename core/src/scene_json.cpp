@@ -267,16 +267,11 @@ double number_in(const Field& field, double lo, double hi, const char* range); /
 // ---- Material types (issue #28) ---------------------------------------------------------------
 
 /// The keys that only some material types take; each type lists its own.
-constexpr std::string_view k_type_keys[] = {"reflectance",
-                                            "diffuse_transmittance",
-                                            "alpha",
-                                            "specular",
-                                            "fresnel",
-                                            "ior",
-                                            "solid",
-                                            "transmittance",
-                                            "transmissivity",
-                                            "transmittance_normal"};
+constexpr std::string_view k_type_keys[] = {"reflectance",    "diffuse_transmittance",
+                                            "alpha",          "specular",
+                                            "fresnel",        "ior",
+                                            "solid",          "transmittance",
+                                            "transmissivity", "transmittance_normal"};
 
 struct MaterialType {
     std::string_view name;

@@ -73,4 +73,21 @@ Eigen::MatrixXf direct_sun_lx(const annual::SkyMatrix& matrix, const Eigen::Matr
 ///        used: the weather gives them; its compass (Sky::compass) orients the patches.
 AnnualResult run_annual(const Scene& scene, const AnnualOptions& options, const Context& ctx);
 
+/// \brief What `penumbra annual` writes besides its results' own choices.
+struct AnnualWriteOptions {
+    std::string directory;
+    bool hourly = false;                        ///< --hourly
+    std::optional<std::string> heat_map_sensor; ///< --heat-map NAME
+};
+
+/// \brief Throws ConfigError before any work if \p write names a heat-map sensor the scene
+///        does not have.
+void check_annual_outputs(const Scene& scene, const AnnualWriteOptions& write);
+
+/// \brief Writes annual.csv, summary.json (with the run's patches, timings, weather and
+///        coefficients' system), the plans, the heat map, the grids' points and on request the
+///        hourly values (README.md, docs/annual.md).
+void write_annual(const Scene& scene, const AnnualOptions& options, const AnnualResult& result,
+                  const AnnualWriteOptions& write, const Context& ctx);
+
 } // namespace penumbra::app

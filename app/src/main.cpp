@@ -106,8 +106,8 @@ void add_common_flags(CLI::App& cmd, CommonFlags& flags) {
 }
 
 /// The scene with the solver and mesher flags of bake and daylight applied.
-Scene load_with_overrides(const BakeFlags& flags) {
-    Scene scene = load_scene(flags.scene);
+Scene load_with_overrides(const BakeFlags& flags, SceneLight light = SceneLight::own) {
+    Scene scene = load_scene(flags.scene, light);
     if (flags.max_edge_m > 0)
         scene.mesher.max_edge_length = flags.max_edge_m;
     if (flags.residual > 0)
@@ -225,7 +225,7 @@ annual::Occupancy parse_occupancy(const std::string& text) {
 
 int run_annual(AnnualFlags& flags, const CommonFlags& common) {
     Context ctx = make_context(common);
-    const Scene scene = load_with_overrides(flags.scene);
+    const Scene scene = load_with_overrides(flags.scene, SceneLight::weather);
     check_output_dir(flags.scene.output);
     flags.write.directory = flags.scene.output;
     if (!flags.heat_map.empty())

@@ -571,13 +571,13 @@ void resolve_emission_flux(Scene& scene) {
 
 } // namespace
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, SceneLight light) {
     const std::string text = read_text_file(path);
-    return parse_scene(text, path, fs::path(path).parent_path().string());
+    return parse_scene(text, path, fs::path(path).parent_path().string(), light);
 }
 
 Scene parse_scene(const std::string& json_text, const std::string& file_name,
-                  const std::string& base_dir) {
+                  const std::string& base_dir, SceneLight light) {
     SceneSpec spec = parse_scene_json(json_text, file_name);
     Scene scene = std::move(spec.scene);
     RadianceImport radiance(spec.metres_per_unit);
@@ -593,14 +593,14 @@ Scene parse_scene(const std::string& json_text, const std::string& file_name,
             read_sensor_file(resolve(base_dir, *spec.sensor_file), spec.metres_per_unit);
         scene.sensors.insert(scene.sensors.end(), sensors.begin(), sensors.end());
     }
-    validate_scene(scene);
+    validate_scene(scene, light);
     // Grids lie on validated polygons, so their points are finite.
     add_sensor_grids(scene, spec.grids);
     validate_sensor_grids(scene);
     return scene;
 }
 
-void validate_scene(Scene& scene) {
+void validate_scene(Scene& scene, SceneLight light) {
     for (const Polygon& polygon : scene.polygons)
         validate_polygon(scene, polygon);
     for (const Material& material : scene.materials)
@@ -611,7 +611,7 @@ void validate_scene(Scene& scene) {
         validate_camera(scene, *scene.camera);
     validate_settings(scene);
     resolve_emission_flux(scene);
-    check(scene.has_emitter(), scene, "",
+    check(light == SceneLight::weather || scene.has_emitter(), scene, "",
           "scene has no emitter: give a material 'emission' or add 'point_lights' or a 'sun'");
 }
 

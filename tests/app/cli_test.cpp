@@ -509,5 +509,57 @@ TEST(CliDaylight, SunlitWorkPlane) {
     fs::remove_all(dir);
 }
 
+// `annual` on an unobstructed black floor under Chicago's year: every output file, one row
+// per sensor, the hourly values' size; bad flags and files are one-line errors that leave no
+// output folder.
+TEST(CliAnnual, OutputsAndBadInput) {
+    const fs::path dir = test::temp_dir("cli-annual");
+    write(dir / "floor.json", R"({
+  "materials": {"black": {"reflectance": 0}},
+  "polygons": [{"name": "floor", "material": "black",
+                "vertices": [[0,0,0],[2,0,0],[2,2,0],[0,2,0]]}],
+  "grids": {"wp": {"floor": "floor", "height": 0.85, "spacing": 1, "wall_offset": 0.5}},
+  "mesher": {"max_edge_length": 1}
+})");
+    const std::string weather = test::source_path("data/weather/chicago_ohare_tmy3.epw");
+    const std::string scene = (dir / "floor.json").string();
+    const fs::path out = dir / "out";
+    const RunResult r = run_cli("annual " + scene + " --weather " + weather + " -o " +
+                                out.string() + " --hourly -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* f : {"annual.csv", "summary.json", "annual_wp_da.png", "annual_wp.vtp",
+                          "hourly_illuminance.f32", "hourly_illuminance.json"})
+        EXPECT_TRUE(fs::exists(out / f)) << f;
+    std::ifstream csv(out / "annual.csv");
+    std::string line;
+    int rows = -1; // the header
+    while (std::getline(csv, line))
+        ++rows;
+    EXPECT_GE(rows, 1);
+    EXPECT_EQ(fs::file_size(out / "hourly_illuminance.f32"),
+              std::uintmax_t(rows) * 8760u * sizeof(float));
+
+    struct Bad {
+        std::string args;
+        int code;
+        std::string says;
+    };
+    const std::vector<Bad> bad = {
+        {"annual " + scene + " --weather " + (dir / "none.epw").string(), 2, "none.epw"},
+        {"annual " + scene + " --weather " + weather + " --occupancy 18-8", 3, "--occupancy"},
+        {"annual " + scene + " --weather " + weather + " --heat-map nosuch", 3, "nosuch"},
+        {"annual " + scene + " --weather " + weather + " --patches 7", 3, "--patches"},
+    };
+    for (const Bad& b : bad) {
+        const fs::path fresh = dir / "fresh";
+        const RunResult e = run_cli(b.args + " -o " + fresh.string() + " -q");
+        EXPECT_EQ(e.exit_code, b.code) << b.args << ": " << e.err;
+        EXPECT_EQ(count_lines(e.err), 1) << e.err;
+        EXPECT_NE(e.err.find(b.says), std::string::npos) << e.err;
+        EXPECT_FALSE(fs::exists(fresh / "annual.csv")) << b.args;
+    }
+    fs::remove_all(dir);
+}
+
 } // namespace
 } // namespace penumbra

@@ -73,6 +73,11 @@ Eigen::MatrixXf root_coefficients(const HierarchicalSystem& sys, const Scene& li
     return out;
 }
 
+// The sensors' own view of each patch: each patch's part of the sky integral gathers from
+// all the cells it overlaps, so its error is that of the cells along its edges; 4× the
+// cells of k_sky_point_quadrature halve it (docs/annual.md), for a few sensors' rays.
+constexpr SkyQuadrature k_sky_coefficient_quadrature{64, 5};
+
 // The sensors' own view of each patch (as gather_direct integrates the sky at a sensor).
 Eigen::MatrixXf sensor_direct(const Scene& scene, const Sky& sky, const ElementGeometry& geo,
                               const VisibilityQuery& visibility, const PatchBinning& patches,
@@ -85,7 +90,7 @@ Eigen::MatrixXf sensor_direct(const Scene& scene, const Sky& sky, const ElementG
                                       std::uint64_t(RngPurpose::sensor_visibility), ctx.seed);
         std::vector<SkySample> samples;
         sky_point_samples(sky, sensor.position + sensor.normal * geo.offset, sensor.normal,
-                          geo.diagonal, visibility, k_sky_point_quadrature, rng, samples);
+                          geo.diagonal, visibility, k_sky_coefficient_quadrature, rng, samples);
         bin_samples(samples, patches, out, Eigen::Index(s));
     });
     return out;

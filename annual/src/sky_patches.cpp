@@ -94,4 +94,52 @@ std::size_t SkyPatches::find(const Vec3& dir) const {
     return first + std::size_t(column);
 }
 
+PatchWeights SkyPatches::interpolate(const Vec3& dir) const {
+    PatchWeights out;
+    const double up = dot(dir, compass_.up);
+    if (up < 0) {
+        out.patch[0] = ground;
+        out.weight[0] = 1;
+        out.count = 1;
+        return out;
+    }
+    const double altitude = std::asin(std::min(1.0, up / length(dir))) / k_deg;
+    double azimuth = std::atan2(dot(dir, compass_.east()), dot(dir, compass_.north)) / k_deg;
+    if (azimuth < 0)
+        azimuth += 360;
+    const int rows = k_tregenza_rows * subdivision_;
+    // Row r's centre is (r + 0.5) h; the cap's, the zenith.
+    const auto centre = [&](int r) { return r == rows ? 90.0 : (r + 0.5) * row_height_deg_; };
+    const auto add_row = [&](int r, double weight) {
+        if (weight <= 0)
+            return;
+        const std::size_t first = row_first_[std::size_t(r)];
+        if (r == rows) { // the cap
+            out.patch[std::size_t(out.count)] = first;
+            out.weight[std::size_t(out.count++)] = weight;
+            return;
+        }
+        const int count = int(row_first_[std::size_t(r) + 1] - first);
+        const double u = azimuth * count / 360; // patch centres at whole u (column 0: north)
+        const int j = int(std::floor(u));
+        const double f = u - j;
+        for (const auto& [column, w] : {std::pair{j, 1 - f}, std::pair{j + 1, f}}) {
+            if (w <= 0)
+                continue;
+            out.patch[std::size_t(out.count)] = first + std::size_t(column % count);
+            out.weight[std::size_t(out.count++)] = weight * w;
+        }
+    };
+    if (altitude <= centre(0)) {
+        add_row(0, 1);
+        return out;
+    }
+    int r = std::min(int(std::floor(altitude / row_height_deg_ - 0.5)), rows - 1);
+    r = std::max(r, 0);
+    const double t = std::clamp((altitude - centre(r)) / (centre(r + 1) - centre(r)), 0.0, 1.0);
+    add_row(r, 1 - t);
+    add_row(r + 1, t);
+    return out;
+}
+
 } // namespace penumbra::annual

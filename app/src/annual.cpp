@@ -64,6 +64,14 @@ Eigen::MatrixXf direct_sun_lx(const annual::SkyMatrix& matrix, const Eigen::Matr
     return out;
 }
 
+solver::PatchBinning patch_binning(const annual::SkyPatches& patches) {
+    return {patches.size(), [&patches](const Vec3& dir, double weight, std::vector<double>& sums) {
+                const annual::PatchWeights w = patches.interpolate(dir);
+                for (int k = 0; k < w.count; ++k)
+                    sums[w.patch[std::size_t(k)]] += weight * w.weight[std::size_t(k)];
+            }};
+}
+
 SunBins bin_suns(const annual::SkyMatrix& matrix, const annual::SkyPatches& bins) {
     SunBins out;
     out.bin.resize(matrix.suns.size());
@@ -114,8 +122,7 @@ AnnualResult run_annual(const Scene& scene, const AnnualOptions& options, const 
     const auto t0 = std::chrono::steady_clock::now();
     const RadiosityMesh mesh = mesher::build_mesh(lit, ctx);
     const raytrace::EmbreeScene embree(mesh);
-    const solver::PatchBinning binning{patches.size(),
-                                       [&](const Vec3& d) { return patches.find(d); }};
+    const solver::PatchBinning binning = patch_binning(patches);
     r.coefficients =
         solver::daylight_coefficients(lit, mesh, embree, binning, suns.directions, diameter, ctx);
     r.coefficient_seconds = seconds_since(t0);

@@ -5,6 +5,7 @@
 // rows of patches from the horizon up, each row from north (its first patch centred on north)
 // toward east, and last the zenith cap. docs/annual.md gives the geometry.
 
+#include <array>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -28,6 +29,13 @@ struct SkyPatch {
     /// ∫ max(0, ω·up) dω over the patch: an unobstructed upward horizontal's irradiance per
     /// unit radiance of the patch (0 for the ground; the sky's patches sum to π).
     double horizontal_projected_solid_angle_sr = 0;
+};
+
+/// \brief A direction's shares of up to four patches (the weights sum to 1).
+struct PatchWeights {
+    std::array<std::size_t, 4> patch{};
+    std::array<double, 4> weight{};
+    int count = 0;
 };
 
 /// \brief Tregenza's or Reinhart's patches of the whole sphere: 144 MF² + 1 sky patches and
@@ -56,6 +64,16 @@ public:
     ///        whose bounds contain it (a direction on a bound goes to the patch above or, in
     ///        azimuth, clockwise of it; as reinhart.cal).
     std::size_t find(const Vec3& dir) const;
+
+    /// \brief The shares of \p dir in the patches around it: linear interpolation between
+    ///        the centres of the two rows of patches its altitude lies between (the cap's
+    ///        centre is the zenith; below the first row's centre, that row alone), and within
+    ///        each row between the two patch centres its azimuth lies between. Sky values
+    ///        given per patch then vary linearly between the patches' centres instead of
+    ///        stepping at their bounds: daylight coefficients binned by these weights see a
+    ///        sky's gradation within a patch (CIE 171's grazing views through a roof opening:
+    ///        4.5 % → docs/annual.md). The ground (dir·up < 0) is one patch.
+    PatchWeights interpolate(const Vec3& dir) const;
 
 private:
     int subdivision_;

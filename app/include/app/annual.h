@@ -45,6 +45,10 @@ struct AnnualResult {
     double coefficient_seconds = 0, hours_seconds = 0;
 };
 
+/// \brief The coefficients' binning of sky directions: each direction shared among the
+///        patches around it (SkyPatches::interpolate). \p patches must outlive it.
+solver::PatchBinning patch_binning(const annual::SkyPatches& patches);
+
 /// \brief The year's suns binned by direction: each hour with the sun up names a bin, each
 ///        bin one direction (the mean of its hours'), for which the reflected light of a sun
 ///        is solved once.

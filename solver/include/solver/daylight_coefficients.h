@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <functional>
 #include <span>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -23,8 +24,9 @@ namespace penumbra::solver {
 ///        solver does not depend on the annual library).
 struct PatchBinning {
     std::size_t count = 0;
-    /// The patch of a unit world direction pointing away from the scene (sky or ground).
-    std::function<std::size_t(const Vec3&)> patch_of;
+    /// Adds \p weight, shared among the patches of the unit world direction \p dir (pointing
+    /// away from the scene, to the sky or ground), to \p sums (one per patch).
+    std::function<void(const Vec3& dir, double weight, std::vector<double>& sums)> add;
 };
 
 /// \brief Irradiance (W/m²) at each sensor per unit radiance (W/(sr·m²)) of each patch:

@@ -47,7 +47,7 @@ void bin_samples(const std::vector<SkySample>& samples, const PatchBinning& patc
                  Eigen::MatrixXf& out, Eigen::Index row) {
     std::vector<double> sum(patches.count, 0.0);
     for (const SkySample& s : samples)
-        sum[patches.patch_of(s.direction)] += s.weight * s.radiance.g;
+        patches.add(s.direction, s.weight * s.radiance.g, sum);
     for (std::size_t p = 0; p < patches.count; ++p)
         out(row, Eigen::Index(p)) = float(sum[p]);
 }

@@ -18,21 +18,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The scene as the coefficients see it: the weather brings sky and sun. A unit sky keeps the
-// mesher's hidden-region test counting the sky (no sun: its position changes every hour).
-Scene weather_lit(const Scene& scene) {
-    Scene lit = scene;
-    lit.sun.reset();
-    Sky sky;
-    sky.model = UniformSky{};
-    if (scene.sky)
-        sky.compass = scene.sky->compass;
-    sky.zenith_radiance = 1.0;
-    sky.ground_radiance = 1.0;
-    lit.sky = sky;
-    return lit;
-}
-
 // The hours whose sun is up (it has normal illuminance).
 std::vector<std::size_t> sun_hours(const annual::SkyMatrix& matrix) {
     std::vector<std::size_t> out;
@@ -108,7 +93,7 @@ AnnualResult run_annual(const Scene& scene, const AnnualOptions& options, const 
                          "illuminance");
     AnnualResult r;
     r.weather = annual::read_epw(options.weather_file);
-    const Scene lit = weather_lit(scene);
+    const Scene lit = solver::coefficient_scene(scene); // the weather brings sky and sun
     const annual::SkyPatches patches(options.subdivision, lit.sky->compass);
     r.patches = patches.size();
     const auto ts = std::chrono::steady_clock::now();

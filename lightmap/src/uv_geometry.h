@@ -10,25 +10,6 @@
 
 namespace penumbra::lightmap {
 
-inline Vec2 operator+(const Vec2& a, const Vec2& b) {
-    return {a.x + b.x, a.y + b.y};
-}
-inline Vec2 operator-(const Vec2& a, const Vec2& b) {
-    return {a.x - b.x, a.y - b.y};
-}
-inline Vec2 operator*(const Vec2& a, double s) {
-    return {a.x * s, a.y * s};
-}
-inline double dot(const Vec2& a, const Vec2& b) {
-    return a.x * b.x + a.y * b.y;
-}
-inline double cross(const Vec2& a, const Vec2& b) {
-    return a.x * b.y - a.y * b.x;
-}
-inline double length(const Vec2& a) {
-    return std::sqrt(dot(a, a));
-}
-
 using Triangle2 = std::array<Vec2, 3>;
 
 /// Twice the signed area: positive when a, b, c turn counter-clockwise (x right, y up).

@@ -9,29 +9,10 @@
 
 namespace penumbra::mesher {
 
-inline Vec2 operator+(const Vec2& a, const Vec2& b) {
-    return {a.x + b.x, a.y + b.y};
-}
-inline Vec2 operator-(const Vec2& a, const Vec2& b) {
-    return {a.x - b.x, a.y - b.y};
-}
-inline Vec2 operator*(const Vec2& a, double s) {
-    return {a.x * s, a.y * s};
-}
-inline double dot(const Vec2& a, const Vec2& b) {
-    return a.x * b.x + a.y * b.y;
-}
-inline double cross(const Vec2& a, const Vec2& b) {
-    return a.x * b.y - a.y * b.x;
-}
-inline double length(const Vec2& a) {
-    return std::sqrt(dot(a, a));
-}
-
 /// A 2D segment.
 struct Segment2 {
     Vec2 a, b;
-    double length() const { return mesher::length(b - a); }
+    double length() const { return penumbra::length(b - a); }
 };
 
 /// Parameter interval [lo, hi] along a line.

@@ -34,16 +34,7 @@ Scene glazed_room() {
     glass.lobe = ThinGlass{Rgb(0.762842f), 1.52};
     scene.materials.push_back(glass);
     const auto pane = std::uint32_t(scene.materials.size() - 1);
-    add_rect(scene, "floor", grey, {0, 0, 0}, {4, 0, 0}, {0, 3, 0});
-    add_rect(scene, "ceiling", grey, {0, 0, 2.5}, {0, 3, 0}, {4, 0, 0});
-    add_rect(scene, "wall_x0", grey, {0, 0, 0}, {0, 3, 0}, {0, 0, 2.5});
-    add_rect(scene, "wall_x4", grey, {4, 0, 0}, {0, 0, 2.5}, {0, 3, 0});
-    add_rect(scene, "wall_y3", grey, {0, 3, 0}, {4, 0, 0}, {0, 0, 2.5});
-    add_rect(scene, "sill", grey, {0, 0, 0}, {0, 0, 0.8}, {4, 0, 0});
-    add_rect(scene, "lintel", grey, {0, 0, 1.8}, {0, 0, 0.7}, {4, 0, 0});
-    add_rect(scene, "jamb_w", grey, {0, 0, 0.8}, {0, 0, 1}, {1.2, 0, 0});
-    add_rect(scene, "jamb_e", grey, {2.8, 0, 0.8}, {0, 0, 1}, {1.2, 0, 0});
-    add_rect(scene, "pane", pane, {1.2, 0, 0.8}, {0, 0, 1}, {1.6, 0, 0});
+    test::add_side_lit_room(scene, grey, pane, 1.2, 2.8);
     for (double x : {1.0, 2.0, 3.0})
         for (double y : {0.8, 2.0})
             scene.sensors.push_back({"s", {x, y, 0.85}, {0, 0, 1}});

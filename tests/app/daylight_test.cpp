@@ -121,16 +121,7 @@ TEST(GlazingUnderSky, GlazedRoomPowerBalances) {
     scene.materials.push_back(glass);
     const auto glass_id = std::uint32_t(scene.materials.size() - 1);
     // A 4 × 3 × 2.5 m room, window 1 × 1 m in the wall y = 0 (x 1.5–2.5, z 0.8–1.8).
-    add_rect(scene, "floor", grey, {0, 0, 0}, {4, 0, 0}, {0, 3, 0});
-    add_rect(scene, "ceiling", grey, {0, 0, 2.5}, {0, 3, 0}, {4, 0, 0});
-    add_rect(scene, "wall_x0", grey, {0, 0, 0}, {0, 3, 0}, {0, 0, 2.5});
-    add_rect(scene, "wall_x4", grey, {4, 0, 0}, {0, 0, 2.5}, {0, 3, 0});
-    add_rect(scene, "wall_y3", grey, {0, 3, 0}, {4, 0, 0}, {0, 0, 2.5});
-    add_rect(scene, "sill", grey, {0, 0, 0}, {0, 0, 0.8}, {4, 0, 0});
-    add_rect(scene, "lintel", grey, {0, 0, 1.8}, {0, 0, 0.7}, {4, 0, 0});
-    add_rect(scene, "jamb_w", grey, {0, 0, 0.8}, {0, 0, 1}, {1.5, 0, 0});
-    add_rect(scene, "jamb_e", grey, {2.5, 0, 0.8}, {0, 0, 1}, {1.5, 0, 0});
-    add_rect(scene, "pane", glass_id, {1.5, 0, 0.8}, {0, 0, 1}, {1, 0, 0});
+    test::add_side_lit_room(scene, grey, glass_id, 1.5, 2.5);
     scene.sky = overcast_sky(1e4);
     scene.sky->ground_radiance = 0.2 * 1e4 / k_pi / k_luminous_efficacy_lm_per_w;
     scene.mesher.max_edge_length = 0.5;

@@ -113,6 +113,20 @@ void add_cie171_room_without_ceiling(Scene& scene, std::uint32_t material) {
     add_rect(scene, "wall_x4", material, {4, 0, 0}, {0, 0, h}, {0, 4, 0});
 }
 
+void add_side_lit_room(Scene& scene, std::uint32_t walls, std::uint32_t pane, double window_x0,
+                       double window_x1) {
+    add_rect(scene, "floor", walls, {0, 0, 0}, {4, 0, 0}, {0, 3, 0});
+    add_rect(scene, "ceiling", walls, {0, 0, 2.5}, {0, 3, 0}, {4, 0, 0});
+    add_rect(scene, "wall_x0", walls, {0, 0, 0}, {0, 3, 0}, {0, 0, 2.5});
+    add_rect(scene, "wall_x4", walls, {4, 0, 0}, {0, 0, 2.5}, {0, 3, 0});
+    add_rect(scene, "wall_y3", walls, {0, 3, 0}, {4, 0, 0}, {0, 0, 2.5});
+    add_rect(scene, "sill", walls, {0, 0, 0}, {0, 0, 0.8}, {4, 0, 0});
+    add_rect(scene, "lintel", walls, {0, 0, 1.8}, {0, 0, 0.7}, {4, 0, 0});
+    add_rect(scene, "jamb_w", walls, {0, 0, 0.8}, {0, 0, 1}, {window_x0, 0, 0});
+    add_rect(scene, "jamb_e", walls, {window_x1, 0, 0.8}, {0, 0, 1}, {4 - window_x1, 0, 0});
+    add_rect(scene, "pane", pane, {window_x0, 0, 0.8}, {0, 0, 1}, {window_x1 - window_x0, 0, 0});
+}
+
 int expect_one_line_input_error(const std::function<void()>& load,
                                 const std::vector<std::string>& parts, const std::string& what) {
     try {

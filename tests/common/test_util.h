@@ -73,6 +73,12 @@ void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t materi
 /// in [0, 4], z in [0, 3]; the tests add their own ceilings.
 void add_cie171_room_without_ceiling(Scene& scene, std::uint32_t material);
 
+/// \brief Adds a 4 × 3 × 2.5 m room (walls facing inwards) with a window in its wall y = 0:
+///        x from \p window_x0 to \p window_x1, z from 0.8 to 1.8 m, filled by a polygon of
+///        material \p pane.
+void add_side_lit_room(Scene& scene, std::uint32_t walls, std::uint32_t pane, double window_x0,
+                       double window_x1);
+
 /// \brief Runs \p load and expects an InputError whose message is one line holding each of
 ///        \p parts; returns the error's line (0 if none was thrown). \p what names the input
 ///        in failure messages.

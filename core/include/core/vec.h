@@ -86,6 +86,26 @@ struct Vec2 {
     double x = 0, y = 0;
 };
 
+inline Vec2 operator+(const Vec2& a, const Vec2& b) {
+    return {a.x + b.x, a.y + b.y};
+}
+inline Vec2 operator-(const Vec2& a, const Vec2& b) {
+    return {a.x - b.x, a.y - b.y};
+}
+inline Vec2 operator*(const Vec2& a, double s) {
+    return {a.x * s, a.y * s};
+}
+inline double dot(const Vec2& a, const Vec2& b) {
+    return a.x * b.x + a.y * b.y;
+}
+/// The z component of the 3D cross product: twice the signed area of (0, a, b).
+inline double cross(const Vec2& a, const Vec2& b) {
+    return a.x * b.y - a.y * b.x;
+}
+inline double length(const Vec2& a) {
+    return std::sqrt(dot(a, a));
+}
+
 /// Axis-aligned bounding box.
 struct BBox {
     Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),

@@ -43,6 +43,11 @@ struct DaylightCoefficients {
     std::size_t nodes = 0, links = 0; ///< of the system the coefficients were solved on
 };
 
+/// \brief \p scene as the coefficients light it: a uniform sky and ground of radiance 1 (with
+///        the scene's compass), no sun, no point lights. The links are refined under it; mesh
+///        this scene, so that the mesher's hidden-region test counts the sky.
+Scene coefficient_scene(const Scene& scene);
+
 /// \brief Daylight coefficients of \p scene's sensors for the patches of \p patches and
 ///        suns (of \p sun_angular_diameter_deg) in \p sun_directions (unit, toward the sun).
 ///        The scene's own sky, sun, point lights and emission are not used: the links are

@@ -20,27 +20,6 @@ namespace penumbra::solver {
 
 namespace {
 
-// Radiance 1 W/(sr·m²) in every direction, sky and ground: each sample's weight is then its
-// share of the integral, T cos θ Δω.
-Sky unit_sky(const Scene& scene) {
-    Sky sky;
-    sky.model = UniformSky{};
-    if (scene.sky)
-        sky.compass = scene.sky->compass;
-    sky.zenith_radiance = 1.0;
-    sky.ground_radiance = 1.0;
-    return sky;
-}
-
-// The scene the links are refined for: the unit sky and nothing else.
-Scene refinement_scene(const Scene& scene) {
-    Scene lit = scene;
-    lit.sun.reset();
-    lit.point_lights.clear();
-    lit.sky = unit_sky(scene);
-    return lit;
-}
-
 // Σ weight of \p samples per patch into row \p row of \p out. Sums in sample order: the same
 // for every thread count.
 void bin_samples(const std::vector<SkySample>& samples, const PatchBinning& patches,
@@ -182,13 +161,27 @@ SourceTerms patch_sources(const Eigen::MatrixXf& roots, std::size_t p) {
 
 } // namespace
 
+Scene coefficient_scene(const Scene& scene) {
+    Scene lit = scene;
+    lit.sun.reset();
+    lit.point_lights.clear();
+    Sky sky; // radiance 1: each sample's weight is then its share T cos θ Δω of the integral
+    sky.model = UniformSky{};
+    if (scene.sky)
+        sky.compass = scene.sky->compass;
+    sky.zenith_radiance = 1.0;
+    sky.ground_radiance = 1.0;
+    lit.sky = sky;
+    return lit;
+}
+
 DaylightCoefficients daylight_coefficients(const Scene& scene, const RadiosityMesh& mesh,
                                            const VisibilityQuery& visibility,
                                            const PatchBinning& patches,
                                            std::span<const Vec3> sun_directions,
                                            double sun_angular_diameter_deg, const Context& ctx) {
     return run_in_arena(ctx, [&] {
-        const Scene lit = refinement_scene(scene);
+        const Scene lit = coefficient_scene(scene);
         SweepLog log{mesh, nullptr, nullptr};
         std::unique_ptr<HierarchicalSystem> sys;
         {

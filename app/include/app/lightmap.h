@@ -1,0 +1,58 @@
+#pragma once
+// `penumbra lightmap` (issue #29): the bake pipeline without render, then the scene's charts
+// packed into atlases and every covered texel filled with the irradiance the solution and the
+// sources give its footprint; written as linear EXR, tone-mapped PNG and a JSON manifest.
+// docs/lightmaps.md describes the method.
+
+#include <string>
+#include <vector>
+
+#include "app/pipeline.h"
+#include "core/context.h"
+#include "core/image.h"
+#include "core/scene.h"
+#include "lightmap/atlas.h"
+#include "lightmap/charts.h"
+
+namespace penumbra::app {
+
+/// \brief Options of `penumbra lightmap`.
+struct LightmapOptions {
+    lightmap::AtlasSettings atlas; ///< density, atlas size, padding
+    ExrPixels exr = ExrPixels::half;
+};
+
+/// \brief What filling found, summed over the atlases.
+struct LightmapCounts {
+    std::size_t texels = 0;         ///< covered texels
+    std::size_t samples = 0;        ///< footprint samples on the charts
+    std::size_t hidden_samples = 0; ///< on a hidden or covered part: skipped
+    std::size_t hidden_texels = 0;  ///< every sample hidden: valued from their chart's texels
+    std::size_t unlit_texels = 0;   ///< hidden, on a chart hidden everywhere: left 0
+};
+
+/// \brief A lightmap bake: the radiosity bake, the charts and their atlases of irradiance.
+struct LightmapResult {
+    BakeResult bake;
+    lightmap::Charts charts;
+    lightmap::AtlasLayout layout;
+    std::vector<Image> atlases; ///< irradiance, W/m², linear RGB, layout.size² each
+    LightmapCounts counts;
+    int samples_per_texel = 0;    ///< footprint samples of a texel that lies wholly on its chart
+    std::vector<StageTime> times; ///< charts, packing, texels, bake, fill
+};
+
+/// \brief Charts and packs \p scene (throwing ConfigError for bad atlas settings before any
+///        solving), bakes it without render or solver state, and fills the atlases.
+///        Deterministic for any thread count.
+LightmapResult bake_lightmaps(const Scene& scene, const LightmapOptions& options,
+                              const Context& ctx);
+
+/// \brief Writes lightmap_N.exr (irradiance W/m², options.exr pixels), lightmap_N.png (an
+///        8-bit sRGB preview at one automatic exposure for all atlases) per atlas and
+///        lightmaps.json (the manifest) into \p dir, each atomically; removes the lightmap_N
+///        files of an earlier run with more atlases. Throws ExternalError/ConfigError.
+void write_lightmaps(const std::string& dir, const Scene& scene, const LightmapOptions& options,
+                     const LightmapResult& result);
+
+} // namespace penumbra::app

@@ -1,0 +1,57 @@
+// `penumbra lightmap`: charts and atlases first (bad settings fail before the solve), then the
+// radiosity bake, then the texels filled from its solution.
+
+#include "app/lightmap.h"
+
+#include "lightmap_fill.h"
+
+#include <chrono>
+#include <utility>
+
+#include "lightmap/texels.h"
+#include "raytrace/raytrace.h"
+
+namespace penumbra::app {
+
+namespace {
+
+// Runs \p fn and appends its wall time to \p times under \p stage.
+template <typename Fn>
+decltype(auto) timed(std::vector<StageTime>& times, const char* stage, Fn&& fn) {
+    const auto start = std::chrono::steady_clock::now();
+    decltype(auto) out = fn();
+    const std::chrono::duration<double> dt = std::chrono::steady_clock::now() - start;
+    times.push_back({stage, dt.count()});
+    return out;
+}
+
+} // namespace
+
+LightmapResult bake_lightmaps(const Scene& scene, const LightmapOptions& options,
+                              const Context& ctx) {
+    LightmapResult r;
+    r.charts = timed(r.times, "charts",
+                     [&] { return lightmap::build_charts(scene, lightmap::ChartSettings{}, ctx); });
+    r.layout = timed(r.times, "packing",
+                     [&] { return lightmap::pack_atlases(r.charts, options.atlas, ctx); });
+    const std::vector<lightmap::AtlasTexels> texels =
+        timed(r.times, "texels", [&] { return lightmap::rasterize(r.charts, r.layout, ctx); });
+    BakeOptions bake_options;
+    bake_options.render = false;
+    bake_options.keep_state = false;
+    bake_options.keep_input_mesh = true;
+    r.bake = timed(r.times, "bake", [&] { return bake(scene, bake_options, ctx); });
+    r.samples_per_texel = k_texel_samples_per_axis * k_texel_samples_per_axis;
+    timed(r.times, "fill", [&] {
+        const raytrace::EmbreeScene rt(r.bake.mesh);
+        const RadiosityMesh& sources = r.bake.input_mesh ? *r.bake.input_mesh : r.bake.mesh;
+        for (const lightmap::AtlasTexels& atlas : texels)
+            r.atlases.push_back(fill_atlas(scene, r.bake.solution, rt, sources, r.charts, r.layout,
+                                           atlas, ctx, r.counts));
+        r.bake.rays += rt.rays_traced();
+        return 0;
+    });
+    return r;
+}
+
+} // namespace penumbra::app

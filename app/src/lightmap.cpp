@@ -27,30 +27,42 @@ decltype(auto) timed(std::vector<StageTime>& times, const char* stage, Fn&& fn) 
 
 } // namespace
 
-LightmapResult bake_lightmaps(const Scene& scene, const LightmapOptions& options,
+LightmapResult plan_lightmaps(const Scene& scene, const LightmapOptions& options,
                               const Context& ctx) {
     LightmapResult r;
     r.charts = timed(r.times, "charts",
                      [&] { return lightmap::build_charts(scene, lightmap::ChartSettings{}, ctx); });
     r.layout = timed(r.times, "packing",
                      [&] { return lightmap::pack_atlases(r.charts, options.atlas, ctx); });
-    const std::vector<lightmap::AtlasTexels> texels =
+    r.texels =
         timed(r.times, "texels", [&] { return lightmap::rasterize(r.charts, r.layout, ctx); });
+    r.samples_per_texel = k_texel_samples_per_axis * k_texel_samples_per_axis;
+    return r;
+}
+
+void fill_lightmaps(const Scene& scene, LightmapResult& r, const Context& ctx) {
     BakeOptions bake_options;
     bake_options.render = false;
     bake_options.keep_state = false;
     bake_options.keep_input_mesh = true;
     r.bake = timed(r.times, "bake", [&] { return bake(scene, bake_options, ctx); });
-    r.samples_per_texel = k_texel_samples_per_axis * k_texel_samples_per_axis;
+    r.atlases.clear();
+    r.counts = {};
     timed(r.times, "fill", [&] {
         const raytrace::EmbreeScene rt(r.bake.mesh);
         const RadiosityMesh& sources = r.bake.input_mesh ? *r.bake.input_mesh : r.bake.mesh;
-        for (const lightmap::AtlasTexels& atlas : texels)
+        for (const lightmap::AtlasTexels& atlas : r.texels)
             r.atlases.push_back(fill_atlas(scene, r.bake.solution, rt, sources, r.charts, r.layout,
                                            atlas, ctx, r.counts));
         r.bake.rays += rt.rays_traced();
         return 0;
     });
+}
+
+LightmapResult bake_lightmaps(const Scene& scene, const LightmapOptions& options,
+                              const Context& ctx) {
+    LightmapResult r = plan_lightmaps(scene, options, ctx);
+    fill_lightmaps(scene, r, ctx);
     return r;
 }
 

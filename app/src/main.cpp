@@ -236,8 +236,9 @@ int run_lightmap(const LightmapFlags& flags, const CommonFlags& common) {
     options.atlas.size = flags.atlas_size.value_or(options.atlas.size);
     options.atlas.padding = flags.padding.value_or(options.atlas.padding);
     options.exr = flags.float_exr ? ExrPixels::float32 : ExrPixels::half;
+    app::LightmapResult result = app::plan_lightmaps(scene, options, ctx);
     check_output_dir(flags.scene.output);
-    const app::LightmapResult result = app::bake_lightmaps(scene, options, ctx);
+    app::fill_lightmaps(scene, result, ctx);
     app::write_lightmaps(flags.scene.output, scene, options, result);
     std::string coverage;
     for (double c : result.layout.coverage)

@@ -13,6 +13,7 @@
 #include "core/scene.h"
 #include "lightmap/atlas.h"
 #include "lightmap/charts.h"
+#include "lightmap/texels.h"
 
 namespace penumbra::app {
 
@@ -36,15 +37,23 @@ struct LightmapResult {
     BakeResult bake;
     lightmap::Charts charts;
     lightmap::AtlasLayout layout;
+    std::vector<lightmap::AtlasTexels> texels; ///< per atlas, its covered texels
     std::vector<Image> atlases; ///< irradiance, W/m², linear RGB, layout.size² each
     LightmapCounts counts;
     int samples_per_texel = 0;    ///< footprint samples of a texel that lies wholly on its chart
     std::vector<StageTime> times; ///< charts, packing, texels, bake, fill
 };
 
-/// \brief Charts and packs \p scene (throwing ConfigError for bad atlas settings before any
-///        solving), bakes it without render or solver state, and fills the atlases.
-///        Deterministic for any thread count.
+/// \brief The charts of \p scene, packed into atlases and rasterized (no solving): throws
+///        ConfigError for bad atlas settings. Fills every member but bake, atlases and counts.
+LightmapResult plan_lightmaps(const Scene& scene, const LightmapOptions& options,
+                              const Context& ctx);
+
+/// \brief Bakes \p scene without render or solver state and fills the atlases of \p result
+///        (from plan_lightmaps). Deterministic for any thread count.
+void fill_lightmaps(const Scene& scene, LightmapResult& result, const Context& ctx);
+
+/// \brief plan_lightmaps, then fill_lightmaps.
 LightmapResult bake_lightmaps(const Scene& scene, const LightmapOptions& options,
                               const Context& ctx);
 

@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 #include <png.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
@@ -46,13 +47,14 @@ Imf::FrameBuffer rgb_frame_buffer(const Rgb* pixels, const Imath::Box2i& window)
     return frame;
 }
 
-// The pixels as R, G, B halves (rounded to nearest; beyond 65 504 they become +inf).
+// The pixels as R, G, B halves, rounded to nearest; values beyond the largest half (65 504)
+// are clamped to it rather than written as +inf, which a reader would take for a broken pixel.
 std::vector<Imath::half> to_half(const Image& image) {
     std::vector<Imath::half> out;
     out.reserve(3 * image.pixels.size());
     for (const Rgb& c : image.pixels)
         for (int k = 0; k < 3; ++k)
-            out.emplace_back(c[k]);
+            out.emplace_back(std::min(c[k], float(HALF_MAX)));
     return out;
 }
 

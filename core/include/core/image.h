@@ -24,7 +24,7 @@ struct Image {
 /// \brief How an OpenEXR file stores its channels.
 enum class ExrPixels {
     float32, ///< 32-bit float
-    half,    ///< 16-bit float: 3 significant digits, values up to 65 504 (larger become +inf)
+    half,    ///< 16-bit float: 3 significant digits, values up to 65 504 (larger are clamped)
 };
 
 /// \brief Writes linear RGB OpenEXR (32-bit float unless \p pixels says half) atomically

@@ -40,21 +40,29 @@ LightmapResult plan_lightmaps(const Scene& scene, const LightmapOptions& options
     return r;
 }
 
-void fill_lightmaps(const Scene& scene, LightmapResult& r, const Context& ctx) {
-    BakeOptions bake_options;
-    bake_options.render = false;
-    bake_options.keep_state = false;
-    bake_options.keep_input_mesh = true;
-    r.bake = timed(r.times, "bake", [&] { return bake(scene, bake_options, ctx); });
+BakeOptions lightmap_bake_options() {
+    BakeOptions options;
+    options.render = false;
+    options.keep_state = false;
+    options.keep_input_mesh = true;
+    return options;
+}
+
+void fill_lightmaps(const Scene& scene, const BakeResult& bake, LightmapResult& r,
+                    const Context& ctx) {
+    double bake_seconds = 0;
+    for (const StageTime& t : bake.times)
+        bake_seconds += t.seconds;
+    r.times.push_back({"bake", bake_seconds});
     r.atlases.clear();
     r.counts = {};
     timed(r.times, "fill", [&] {
-        const raytrace::EmbreeScene rt(r.bake.mesh);
-        const RadiosityMesh& sources = r.bake.input_mesh ? *r.bake.input_mesh : r.bake.mesh;
+        const raytrace::EmbreeScene rt(bake.mesh);
+        const RadiosityMesh& sources = bake.input_mesh ? *bake.input_mesh : bake.mesh;
         for (const lightmap::AtlasTexels& atlas : r.texels)
-            r.atlases.push_back(fill_atlas(scene, r.bake.solution, rt, sources, r.charts, r.layout,
+            r.atlases.push_back(fill_atlas(scene, bake.solution, rt, sources, r.charts, r.layout,
                                            atlas, ctx, r.counts));
-        r.bake.rays += rt.rays_traced();
+        r.rays = rt.rays_traced();
         return 0;
     });
 }
@@ -62,7 +70,7 @@ void fill_lightmaps(const Scene& scene, LightmapResult& r, const Context& ctx) {
 LightmapResult bake_lightmaps(const Scene& scene, const LightmapOptions& options,
                               const Context& ctx) {
     LightmapResult r = plan_lightmaps(scene, options, ctx);
-    fill_lightmaps(scene, r, ctx);
+    fill_lightmaps(scene, bake(scene, lightmap_bake_options(), ctx), r, ctx);
     return r;
 }
 

@@ -179,6 +179,29 @@ void add_solve_flags(CLI::App& cmd, BakeFlags& flags) {
         ->check(CLI::IsMember(enum_names<SolverIteration>()));
 }
 
+/// The lightmap options of \p scene's `lightmap` key, with the flags' overrides.
+app::LightmapOptions lightmap_options(const Scene& scene, const LightmapFlags& flags) {
+    app::LightmapOptions options;
+    if (scene.lightmap)
+        options.atlas.size = scene.lightmap->atlas_size;
+    options.atlas.texels_per_metre =
+        flags.texels_per_metre.value_or(options.atlas.texels_per_metre);
+    options.atlas.size = flags.atlas_size.value_or(options.atlas.size);
+    options.atlas.padding = flags.padding.value_or(options.atlas.padding);
+    options.exr = flags.float_exr ? ExrPixels::float32 : ExrPixels::half;
+    return options;
+}
+
+void log_lightmaps(const Context& ctx, const std::string& output, const app::LightmapResult& r) {
+    std::string coverage;
+    for (double c : r.layout.coverage)
+        coverage += fmt::format("{}{:.4f}", coverage.empty() ? "" : ", ", c);
+    ctx.info("wrote lightmaps to {}: {} charts in {} atlas(es) of {}², coverage {}; {} texels, "
+             "{} of them hidden; {} rays",
+             output, r.charts.charts.size(), r.atlases.size(), r.layout.size, coverage,
+             r.counts.texels, r.counts.hidden_texels, r.rays);
+}
+
 int run_bake(const BakeFlags& flags, const CommonFlags& common) {
     Context ctx = make_context(common);
     Scene scene = load_with_overrides(flags);
@@ -193,15 +216,27 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
         previous = solver::read_hierarchical_state(
             fs::is_directory(given) ? (given / app::k_solver_state_file).string() : flags.reuse);
     }
+    // The scene's `lightmap` key asks for lightmaps too; its charts and atlases first, so
+    // that bad settings fail before the solve.
+    const app::LightmapOptions lightmap = lightmap_options(scene, LightmapFlags{});
+    std::optional<app::LightmapResult> lightmaps;
+    if (scene.lightmap)
+        lightmaps = app::plan_lightmaps(scene, lightmap, ctx);
     app::BakeOptions options;
     options.reuse = previous.get();
     options.render = !flags.no_render;
     options.series_every_shots = flags.series_every_shots;
     options.series_dir = flags.output;
     options.keep_state = !flags.no_state;
+    options.keep_input_mesh = scene.lightmap.has_value();
     app::BakeResult result = app::bake(scene, options, ctx);
     app::write_outputs(flags.output, scene, result, !flags.no_state);
     log_power_balance(ctx, flags.output, result);
+    if (lightmaps) {
+        app::fill_lightmaps(scene, result, *lightmaps, ctx);
+        app::write_lightmaps(flags.output, scene, lightmap, *lightmaps);
+        log_lightmaps(ctx, flags.output, *lightmaps);
+    }
     return k_ok;
 }
 
@@ -224,30 +259,17 @@ int run_daylight(const BakeFlags& flags, const CommonFlags& common) {
 }
 
 // The bake pipeline without render or solver state, then the lightmaps: lightmap_N.exr/png and
-// lightmaps.json.
+// lightmaps.json. The charts and atlases come first: bad settings fail before the solve.
 int run_lightmap(const LightmapFlags& flags, const CommonFlags& common) {
     Context ctx = make_context(common);
     const Scene scene = load_with_overrides(flags.scene);
-    app::LightmapOptions options;
-    if (scene.lightmap)
-        options.atlas.size = scene.lightmap->atlas_size;
-    options.atlas.texels_per_metre =
-        flags.texels_per_metre.value_or(options.atlas.texels_per_metre);
-    options.atlas.size = flags.atlas_size.value_or(options.atlas.size);
-    options.atlas.padding = flags.padding.value_or(options.atlas.padding);
-    options.exr = flags.float_exr ? ExrPixels::float32 : ExrPixels::half;
+    const app::LightmapOptions options = lightmap_options(scene, flags);
     app::LightmapResult result = app::plan_lightmaps(scene, options, ctx);
     check_output_dir(flags.scene.output);
-    app::fill_lightmaps(scene, result, ctx);
+    const app::BakeResult baked = app::bake(scene, app::lightmap_bake_options(), ctx);
+    app::fill_lightmaps(scene, baked, result, ctx);
     app::write_lightmaps(flags.scene.output, scene, options, result);
-    std::string coverage;
-    for (double c : result.layout.coverage)
-        coverage += fmt::format("{}{:.4f}", coverage.empty() ? "" : ", ", c);
-    ctx.info("wrote {}: {} charts in {} atlas(es) of {}², coverage {}; {} texels, {} of them "
-             "hidden; {} elements, {} rays",
-             flags.scene.output, result.charts.charts.size(), result.atlases.size(),
-             result.layout.size, coverage, result.counts.texels, result.counts.hidden_texels,
-             result.bake.mesh.element_count(), result.bake.rays);
+    log_lightmaps(ctx, flags.scene.output, result);
     return k_ok;
 }
 

@@ -74,6 +74,23 @@ TEST_F(LightmapCli, WritesTheAtlasesAndTheManifest) {
     EXPECT_NEAR(brightest, 0.7523, 0.005 * 0.7523);
 }
 
+// The scene's `lightmap` key asks `bake` for the lightmaps too, at its atlas size.
+TEST_F(LightmapCli, BakeHonoursTheScenesLightmapKey) {
+    std::string scene = k_scene;
+    scene.insert(scene.rfind('}'), R"(, "lightmap": {"size": 32})");
+    std::ofstream(dir_ / "keyed.json") << scene;
+    const fs::path out = dir_ / "out";
+    const test::RunResult r = test::run_cli("bake " + (dir_ / "keyed.json").string() + " -o " +
+                                            out.string() + " --no-render --no-state -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* f : {"mesh.vtu", "lightmap_0.exr", "lightmap_0.png", "lightmaps.json"})
+        EXPECT_TRUE(fs::exists(out / f)) << f;
+    const auto manifest = nlohmann::json::parse(std::ifstream(out / "lightmaps.json"));
+    EXPECT_EQ(manifest["atlas_size"], 32);
+    EXPECT_EQ(manifest["exr_pixels"], "half");
+    EXPECT_EQ(read_exr((out / "lightmap_0.exr").string()).width, 32);
+}
+
 TEST_F(LightmapCli, BadFlagsAreOneLineErrors) {
     for (const char* flags : {"--texels-per-metre 0", "--texels-per-metre nan", "--atlas 0",
                               "--atlas 9000", "--padding -1", "--atlas 16 --padding 8"}) {

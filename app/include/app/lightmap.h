@@ -4,6 +4,7 @@
 // sources give its footprint; written as linear EXR, tone-mapped PNG and a JSON manifest.
 // docs/lightmaps.md describes the method.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,28 +33,33 @@ struct LightmapCounts {
     std::size_t unlit_texels = 0;   ///< hidden, on a chart hidden everywhere: left 0
 };
 
-/// \brief A lightmap bake: the radiosity bake, the charts and their atlases of irradiance.
+/// \brief The lightmaps of a bake: the charts and their atlases of irradiance.
 struct LightmapResult {
-    BakeResult bake;
     lightmap::Charts charts;
     lightmap::AtlasLayout layout;
     std::vector<lightmap::AtlasTexels> texels; ///< per atlas, its covered texels
     std::vector<Image> atlases; ///< irradiance, W/m², linear RGB, layout.size² each
     LightmapCounts counts;
     int samples_per_texel = 0;    ///< footprint samples of a texel that lies wholly on its chart
-    std::vector<StageTime> times; ///< charts, packing, texels, bake, fill
+    std::vector<StageTime> times; ///< charts, packing, texels, bake (all its stages), fill
+    std::uint64_t rays = 0;       ///< traced by the fill
 };
 
 /// \brief The charts of \p scene, packed into atlases and rasterized (no solving): throws
-///        ConfigError for bad atlas settings. Fills every member but bake, atlases and counts.
+///        ConfigError for bad atlas settings. Fills every member but atlases, counts and rays.
 LightmapResult plan_lightmaps(const Scene& scene, const LightmapOptions& options,
                               const Context& ctx);
 
-/// \brief Bakes \p scene without render or solver state and fills the atlases of \p result
-///        (from plan_lightmaps). Deterministic for any thread count.
-void fill_lightmaps(const Scene& scene, LightmapResult& result, const Context& ctx);
+/// \brief What a bake for lightmaps needs: no render, no solver state, the mesher's mesh
+///        kept (BakeOptions::keep_input_mesh: the fill gathers direct light from its emitters).
+BakeOptions lightmap_bake_options();
 
-/// \brief plan_lightmaps, then fill_lightmaps.
+/// \brief Fills the atlases of \p result (from plan_lightmaps) from \p bake, a bake of
+///        \p scene. Deterministic for any thread count.
+void fill_lightmaps(const Scene& scene, const BakeResult& bake, LightmapResult& result,
+                    const Context& ctx);
+
+/// \brief plan_lightmaps, a bake with lightmap_bake_options(), fill_lightmaps.
 LightmapResult bake_lightmaps(const Scene& scene, const LightmapOptions& options,
                               const Context& ctx);
 

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <new>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -15,6 +16,7 @@
 #include <unistd.h>
 
 #include "app/annual.h"
+#include "app/lightmap.h"
 #include "app/pipeline.h"
 #include "cli_checks.h"
 #include "core/error.h"
@@ -84,6 +86,16 @@ struct AnnualFlags {
     std::string heat_map;
     std::string occupancy;
     bool from_illuminance = false;
+};
+
+/// `penumbra lightmap`'s own flags; the scene and solver flags are BakeFlags'. Unset: the
+/// scene's `lightmap` settings, else the defaults of lightmap::AtlasSettings.
+struct LightmapFlags {
+    BakeFlags scene;
+    std::optional<double> texels_per_metre;
+    std::optional<int> atlas_size;
+    std::optional<int> padding;
+    bool float_exr = false;
 };
 
 Context make_context(const CommonFlags& flags) {
@@ -167,6 +179,29 @@ void add_solve_flags(CLI::App& cmd, BakeFlags& flags) {
         ->check(CLI::IsMember(enum_names<SolverIteration>()));
 }
 
+/// The lightmap options of \p scene's `lightmap` key, with the flags' overrides.
+app::LightmapOptions lightmap_options(const Scene& scene, const LightmapFlags& flags) {
+    app::LightmapOptions options;
+    if (scene.lightmap)
+        options.atlas.size = scene.lightmap->atlas_size;
+    options.atlas.texels_per_metre =
+        flags.texels_per_metre.value_or(options.atlas.texels_per_metre);
+    options.atlas.size = flags.atlas_size.value_or(options.atlas.size);
+    options.atlas.padding = flags.padding.value_or(options.atlas.padding);
+    options.exr = flags.float_exr ? ExrPixels::float32 : ExrPixels::half;
+    return options;
+}
+
+void log_lightmaps(const Context& ctx, const std::string& output, const app::LightmapResult& r) {
+    std::string coverage;
+    for (double c : r.layout.coverage)
+        coverage += fmt::format("{}{:.4f}", coverage.empty() ? "" : ", ", c);
+    ctx.info("wrote lightmaps to {}: {} charts in {} atlas(es) of {}², coverage {}; {} texels, "
+             "{} of them hidden; {} rays",
+             output, r.charts.charts.size(), r.atlases.size(), r.layout.size, coverage,
+             r.counts.texels, r.counts.hidden_texels, r.rays);
+}
+
 int run_bake(const BakeFlags& flags, const CommonFlags& common) {
     Context ctx = make_context(common);
     Scene scene = load_with_overrides(flags);
@@ -181,15 +216,27 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
         previous = solver::read_hierarchical_state(
             fs::is_directory(given) ? (given / app::k_solver_state_file).string() : flags.reuse);
     }
+    // The scene's `lightmap` key asks for lightmaps too; its charts and atlases first, so
+    // that bad settings fail before the solve.
+    const app::LightmapOptions lightmap = lightmap_options(scene, LightmapFlags{});
+    std::optional<app::LightmapResult> lightmaps;
+    if (scene.lightmap)
+        lightmaps = app::plan_lightmaps(scene, lightmap, ctx);
     app::BakeOptions options;
     options.reuse = previous.get();
     options.render = !flags.no_render;
     options.series_every_shots = flags.series_every_shots;
     options.series_dir = flags.output;
     options.keep_state = !flags.no_state;
+    options.keep_input_mesh = scene.lightmap.has_value();
     app::BakeResult result = app::bake(scene, options, ctx);
     app::write_outputs(flags.output, scene, result, !flags.no_state);
     log_power_balance(ctx, flags.output, result);
+    if (lightmaps) {
+        app::fill_lightmaps(scene, result, *lightmaps, ctx);
+        app::write_lightmaps(flags.output, scene, lightmap, *lightmaps);
+        log_lightmaps(ctx, flags.output, *lightmaps);
+    }
     return k_ok;
 }
 
@@ -208,6 +255,21 @@ int run_daylight(const BakeFlags& flags, const CommonFlags& common) {
     app::BakeResult result = app::bake(scene, options, ctx);
     app::write_outputs(flags.output, scene, result, false);
     log_power_balance(ctx, flags.output, result);
+    return k_ok;
+}
+
+// The bake pipeline without render or solver state, then the lightmaps: lightmap_N.exr/png and
+// lightmaps.json. The charts and atlases come first: bad settings fail before the solve.
+int run_lightmap(const LightmapFlags& flags, const CommonFlags& common) {
+    Context ctx = make_context(common);
+    const Scene scene = load_with_overrides(flags.scene);
+    const app::LightmapOptions options = lightmap_options(scene, flags);
+    app::LightmapResult result = app::plan_lightmaps(scene, options, ctx);
+    check_output_dir(flags.scene.output);
+    const app::BakeResult baked = app::bake(scene, app::lightmap_bake_options(), ctx);
+    app::fill_lightmaps(scene, baked, result, ctx);
+    app::write_lightmaps(flags.scene.output, scene, options, result);
+    log_lightmaps(ctx, flags.scene.output, result);
     return k_ok;
 }
 
@@ -344,6 +406,27 @@ int main(int argc, char** argv) {
                      "refinement threshold of the coefficients' links (overrides solver.epsilon)")
         ->check(app::number_in(1e-12, 1.0));
     add_common_flags(*annual_cmd, common);
+    LightmapFlags lightmap;
+    auto* lightmap_cmd = cli.add_subcommand(
+        "lightmap", "mesh and solve a scene, then bake its lightmaps: per atlas lightmap_N.exr "
+                    "(irradiance, W/m²) and lightmap_N.png, and lightmaps.json");
+    add_solve_flags(*lightmap_cmd, lightmap.scene);
+    lightmap_cmd
+        ->add_option("--texels-per-metre", lightmap.texels_per_metre,
+                     "texel density on the surfaces (default 20)")
+        ->check(app::positive_number());
+    lightmap_cmd
+        ->add_option("--atlas", lightmap.atlas_size,
+                     "texels along each side of an atlas (default: the scene's lightmap.atlas, "
+                     "else 1024)")
+        ->check(CLI::Range(1, 8192));
+    lightmap_cmd
+        ->add_option("--padding", lightmap.padding,
+                     "free texels around each chart, filled by dilation (default 2)")
+        ->check(CLI::Range(0, 4096));
+    lightmap_cmd->add_flag("--float", lightmap.float_exr,
+                           "32-bit float EXR channels (default: half)");
+    add_common_flags(*lightmap_cmd, common);
     std::string validate_scene_path;
     auto* validate_cmd = cli.add_subcommand("validate", "load and check a scene, write nothing");
     validate_cmd->add_option("scene", validate_scene_path, "scene file")->required();
@@ -384,6 +467,8 @@ int main(int argc, char** argv) {
             return run_daylight(daylight, common);
         if (*annual_cmd)
             return run_annual(annual, common);
+        if (*lightmap_cmd)
+            return run_lightmap(lightmap, common);
         if (*view_cmd)
             return run_view(view, common);
         return run_validate(validate_scene_path, common);

@@ -65,6 +65,8 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
             // The solution lives on the leaf mesh: trace that from now on.
             result.rays += rt->rays_traced();
             rt.reset();
+            if (options.keep_input_mesh)
+                result.input_mesh = std::move(result.mesh);
             result.mesh = std::move(*solved.refined_mesh);
             rt.emplace(result.mesh);
         }

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/files.h"
 
+#include <Imath/half.h>
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -16,10 +17,12 @@
 #include <fmt/format.h>
 #include <png.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <utility>
+#include <vector>
 
 namespace penumbra {
 
@@ -44,6 +47,28 @@ Imf::FrameBuffer rgb_frame_buffer(const Rgb* pixels, const Imath::Box2i& window)
     return frame;
 }
 
+// The pixels as R, G, B halves, rounded to nearest; values beyond the largest half (65 504)
+// are clamped to it rather than written as +inf, which a reader would take for a broken pixel.
+std::vector<Imath::half> to_half(const Image& image) {
+    std::vector<Imath::half> out;
+    out.reserve(3 * image.pixels.size());
+    for (const Rgb& c : image.pixels)
+        for (int k = 0; k < 3; ++k)
+            out.emplace_back(std::min(c[k], float(HALF_MAX)));
+    return out;
+}
+
+/// The R, G and B slices of interleaved halves laid out over \p window.
+Imf::FrameBuffer half_frame_buffer(const Imath::half* halves, const Imath::Box2i& window) {
+    const std::size_t width = std::size_t(window.max.x - window.min.x + 1);
+    const std::size_t pixel = 3 * sizeof(Imath::half);
+    Imf::FrameBuffer frame;
+    int k = 0;
+    for (const char* name : {"R", "G", "B"})
+        frame.insert(name, Imf::Slice::Make(Imf::HALF, halves + k++, window, pixel, pixel * width));
+    return frame;
+}
+
 std::uint8_t encode_srgb(double linear) {
     if (!(linear > 0))
         return 0; // also NaN
@@ -55,16 +80,21 @@ std::uint8_t encode_srgb(double linear) {
 
 } // namespace
 
-void write_exr(const std::string& path, const Image& image) {
+void write_exr(const std::string& path, const Image& image, ExrPixels pixels) {
     check_image(image, "write_exr", path);
     write_atomically(path, [&](const std::string& temp) {
         try {
             Imf::Header header(image.width, image.height);
             header.compression() = Imf::ZIP_COMPRESSION;
+            const bool half = pixels == ExrPixels::half;
             for (const char* name : {"R", "G", "B"})
-                header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+                header.channels().insert(name, Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
             Imf::OutputFile file(temp.c_str(), header);
-            file.setFrameBuffer(rgb_frame_buffer(image.pixels.data(), header.dataWindow()));
+            // Writing converts no pixel types: half channels get a frame buffer of halves.
+            const std::vector<Imath::half> halves =
+                half ? to_half(image) : std::vector<Imath::half>{};
+            file.setFrameBuffer(half ? half_frame_buffer(halves.data(), header.dataWindow())
+                                     : rgb_frame_buffer(image.pixels.data(), header.dataWindow()));
             file.writePixels(image.height);
         } catch (const std::exception& e) {
             throw ExternalError(fmt::format("cannot write OpenEXR file '{}': {}", path, e.what()));

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -54,6 +55,25 @@ TEST(Exr, RoundTripIsExact) {
     EXPECT_EQ(
         std::memcmp(back.pixels.data(), image.pixels.data(), image.pixels.size() * sizeof(Rgb)), 0);
     EXPECT_EQ(files_in(dir), 1u); // no temporary file left
+}
+
+// Half channels: each value comes back rounded to 11 significant bits (relative error at most
+// 2⁻¹¹ in the normal range, 2⁻²⁴ absolute below it); values beyond the largest half, 65 504,
+// come back as 65 504, not as infinity.
+TEST(Exr, HalfPixelsRoundToElevenBits) {
+    const std::string dir = test::temp_dir("exr-half");
+    const std::string path = dir + "/image.exr";
+    const Image image = test_pattern(13, 7);
+    write_exr(path, image, ExrPixels::half);
+    const Image back = read_exr(path);
+    ASSERT_EQ(back.width, 13);
+    ASSERT_EQ(back.height, 7);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double v = std::min(double(image.pixels[i][c]), 65504.0);
+            EXPECT_NEAR(back.pixels[i][c], v, std::max(v * 0x1p-11, 0x1p-24)) << i << ", " << c;
+        }
+    EXPECT_EQ(files_in(dir), 1u);
 }
 
 TEST(Exr, OverwritesExistingFile) {

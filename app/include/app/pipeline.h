@@ -32,6 +32,10 @@ struct BakeResult {
     std::size_t series_steps = 0;
     /// Hierarchical: the hierarchy, links and radiosities, for a later re-solve.
     std::shared_ptr<const solver::HierarchicalState> solver_state;
+    /// Hierarchical, with BakeOptions::keep_input_mesh: the mesher's mesh that refinement
+    /// started from (mesh is the leaf mesh): its emitters are the same surfaces in fewer
+    /// elements, for gathers whose cost grows with the emitting elements (lightmap texels).
+    std::optional<RadiosityMesh> input_mesh;
 };
 
 struct BakeOptions {
@@ -47,6 +51,8 @@ struct BakeOptions {
     /// solver_state.bin; without it the links are freed once the solve is done, before the
     /// sensors and the render (most of a big scene's memory).
     bool keep_state = true;
+    /// Hierarchical: keep the mesher's mesh in BakeResult::input_mesh.
+    bool keep_input_mesh = false;
 };
 
 /// \brief Runs mesher, solver, sensors and renderer on \p scene.

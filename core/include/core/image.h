@@ -21,8 +21,15 @@ struct Image {
     }
 };
 
-/// \brief Writes linear float RGB OpenEXR atomically (temp name, then rename).
-void write_exr(const std::string& path, const Image& image);
+/// \brief How an OpenEXR file stores its channels.
+enum class ExrPixels {
+    float32, ///< 32-bit float
+    half,    ///< 16-bit float: 3 significant digits, values up to 65 504 (larger are clamped)
+};
+
+/// \brief Writes linear RGB OpenEXR (32-bit float unless \p pixels says half) atomically
+///        (temp name, then rename).
+void write_exr(const std::string& path, const Image& image, ExrPixels pixels = ExrPixels::float32);
 /// \brief Reads an RGB OpenEXR file.
 Image read_exr(const std::string& path);
 

@@ -21,6 +21,7 @@ enum class RngPurpose : std::uint64_t {
     sun_visibility = 9,
     exact_visibility = 10,
     sky_visibility = 11,
+    texel_visibility = 12, ///< lightmap texel samples (issue #29)
 };
 
 /// SplitMix64 finaliser: a strong 64-bit mix.

@@ -11,6 +11,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -110,5 +111,19 @@ using penumbra::SensorReading;
 std::vector<SensorReading> evaluate_sensors(const Scene& scene, const RadiosityMesh& mesh,
                                             const Solution& solution,
                                             const VisibilityQuery& visibility, const Context& ctx);
+
+/// \brief Direct irradiance (W/m²) at each of \p points on a surface facing \p normals (unit),
+///        gathered as the sensors gather it: analytic form factors to the emitting elements
+///        of \p sources (any mesh of the scene's surfaces: the one before hierarchical
+///        refinement has the fewest, and the cost grows with them), point lights, the sun and
+///        the sky (the vertices' sky quadrature), with \p visibility's rays leaving one ray
+///        offset above the point. Each point draws from a stream named by its coordinates and
+///        normal (RngPurpose::texel_visibility): a point's value depends neither on the thread
+///        count nor on the other points. Parallel in an arena from \p ctx. For lightmap
+///        texels (issue #29).
+std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& sources,
+                                      const VisibilityQuery& visibility,
+                                      std::span<const Vec3> points, std::span<const Vec3> normals,
+                                      const Context& ctx);
 
 } // namespace penumbra::solver

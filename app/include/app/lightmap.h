@@ -1,0 +1,73 @@
+#pragma once
+// `penumbra lightmap` (issue #29): the bake pipeline without render, then the scene's charts
+// packed into atlases and every covered texel filled with the irradiance the solution and the
+// sources give its footprint; written as linear EXR, tone-mapped PNG and a JSON manifest.
+// docs/lightmaps.md describes the method.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "app/pipeline.h"
+#include "core/context.h"
+#include "core/image.h"
+#include "core/scene.h"
+#include "lightmap/atlas.h"
+#include "lightmap/charts.h"
+#include "lightmap/texels.h"
+
+namespace penumbra::app {
+
+/// \brief Options of `penumbra lightmap`.
+struct LightmapOptions {
+    lightmap::AtlasSettings atlas; ///< density, atlas size, padding
+    ExrPixels exr = ExrPixels::half;
+};
+
+/// \brief What filling found, summed over the atlases.
+struct LightmapCounts {
+    std::size_t texels = 0;         ///< covered texels
+    std::size_t samples = 0;        ///< footprint samples on the charts
+    std::size_t hidden_samples = 0; ///< on a hidden or covered part: skipped
+    std::size_t hidden_texels = 0;  ///< every sample hidden: valued from their chart's texels
+    std::size_t unlit_texels = 0;   ///< hidden, on a chart hidden everywhere: left 0
+};
+
+/// \brief The lightmaps of a bake: the charts and their atlases of irradiance.
+struct LightmapResult {
+    lightmap::Charts charts;
+    lightmap::AtlasLayout layout;
+    std::vector<lightmap::AtlasTexels> texels; ///< per atlas, its covered texels
+    std::vector<Image> atlases; ///< irradiance, W/m², linear RGB, layout.size² each
+    LightmapCounts counts;
+    int samples_per_texel = 0;    ///< footprint samples of a texel that lies wholly on its chart
+    std::vector<StageTime> times; ///< charts, packing, texels, bake (all its stages), fill
+    std::uint64_t rays = 0;       ///< traced by the fill
+};
+
+/// \brief The charts of \p scene, packed into atlases and rasterized (no solving): throws
+///        ConfigError for bad atlas settings. Fills every member but atlases, counts and rays.
+LightmapResult plan_lightmaps(const Scene& scene, const LightmapOptions& options,
+                              const Context& ctx);
+
+/// \brief What a bake for lightmaps needs: no render, no solver state, the mesher's mesh
+///        kept (BakeOptions::keep_input_mesh: the fill gathers direct light from its emitters).
+BakeOptions lightmap_bake_options();
+
+/// \brief Fills the atlases of \p result (from plan_lightmaps) from \p bake, a bake of
+///        \p scene. Deterministic for any thread count.
+void fill_lightmaps(const Scene& scene, const BakeResult& bake, LightmapResult& result,
+                    const Context& ctx);
+
+/// \brief plan_lightmaps, a bake with lightmap_bake_options(), fill_lightmaps.
+LightmapResult bake_lightmaps(const Scene& scene, const LightmapOptions& options,
+                              const Context& ctx);
+
+/// \brief Writes lightmap_N.exr (irradiance W/m², options.exr pixels), lightmap_N.png (an
+///        8-bit sRGB preview at one automatic exposure for all atlases) per atlas and
+///        lightmaps.json (the manifest) into \p dir, each atomically; removes the lightmap_N
+///        files of an earlier run with more atlases. Throws ExternalError/ConfigError.
+void write_lightmaps(const std::string& dir, const Scene& scene, const LightmapOptions& options,
+                     const LightmapResult& result);
+
+} // namespace penumbra::app

@@ -119,7 +119,10 @@ public:
     PathTracer(const EmbreeScene& rt, const Scene& scene, const Solution& solution,
                const RenderOptions& options)
         : rt_(rt), mesh_(rt.mesh()), scene_(scene), solution_(solution), options_(options),
-          lights_(rt.mesh()), offset_(k_ray_offset * std::max(rt.mesh().scene_diagonal, 1e-3)) {
+          lights_(rt.mesh()),
+          has_glazing_(std::any_of(rt.mesh().patches.begin(), rt.mesh().patches.end(),
+                                   [](const Patch& p) { return p.glazing.has_value(); })),
+          offset_(k_ray_offset * std::max(rt.mesh().scene_diagonal, 1e-3)) {
         if (scene.sun && scene.sun->angular_radius() > 0) {
             sun_cos_max_ = std::cos(scene.sun->angular_radius());
             sun_solid_angle_ = 2.0 * k_pi * (1.0 - sun_cos_max_);
@@ -218,6 +221,12 @@ private:
         if (!(reach > 0))
             return 1.0f;
         const Segment segment{Vec3f(from), Vec3f(dir), 0.0f, reach};
+        if (!has_glazing_) {
+            // occluded() alone: the default transmittance() allocates per call.
+            std::uint8_t blocked = 0;
+            rt_.occluded(std::span(&segment, 1), std::span(&blocked, 1));
+            return blocked ? 0.0f : 1.0f;
+        }
         float t = 0;
         rt_.transmittance(std::span(&segment, 1), std::span(&t, 1));
         return t;
@@ -372,6 +381,7 @@ private:
     const Solution& solution_;
     const RenderOptions& options_;
     AreaLights lights_;
+    bool has_glazing_ = false;
     double offset_ = 0;
     double sun_cos_max_ = 1, sun_solid_angle_ = 0;
 };

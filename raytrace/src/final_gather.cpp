@@ -22,6 +22,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -102,7 +103,40 @@ struct SurfaceHit {
     Vec3 p;
     Vec3 normal;           ///< geometric normal of \p element's side
     std::uint32_t element; ///< the side facing the ray, or the front of a one-sided surface
+    Vec3 shading;          ///< the interpolated vertex normal on that side, else \p normal
 };
+
+/// Barycentric weights of \p p (in the plane) in the triangle (a, b, c), unclamped.
+std::array<double, 3> triangle_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 n = cross(b - a, c - a);
+    const double area2 = dot(n, n);
+    if (!(area2 > 0))
+        return {1.0, 0.0, 0.0};
+    const double w1 = dot(cross(p - a, c - a), n) / area2;
+    const double w2 = dot(cross(b - a, p - a), n) / area2;
+    return {1.0 - w1 - w2, w1, w2};
+}
+
+/// The polygon's vertex normals interpolated at \p p: in the fan triangle (0, k, k + 1) that
+/// contains it (the one it lies deepest in, against rounding). Unit; \p flat without normals.
+Vec3 interpolated_normal(const Polygon& polygon, const Vec3& p, const Vec3& flat) {
+    const auto& v = polygon.vertices;
+    const auto& n = polygon.normals;
+    if (n.size() != v.size() || v.size() < 3)
+        return flat;
+    double best = -std::numeric_limits<double>::infinity();
+    Vec3 normal = flat;
+    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+        const auto w = triangle_weights(p, v[0], v[k], v[k + 1]);
+        const double depth = std::min({w[0], w[1], w[2]});
+        if (depth > best) {
+            best = depth;
+            normal = n[0] * w[0] + n[k] * w[1] + n[k + 1] * w[2];
+        }
+    }
+    const double len = length(normal);
+    return len > 0 && std::isfinite(len) ? normal / len : flat;
+}
 
 /// What a path remembers of its last scattering for MIS at the next hit.
 struct LastScatter {
@@ -134,7 +168,6 @@ public:
         Rgb radiance, beta{1.0f};
         Vec3 origin = ray.origin, dir = ray.direction;
         LastScatter last;
-        bool near_gather_continued = false;
         int diffuse_bounces = 0;
         for (int bounces = 0;;) {
             const auto hit = rt_.intersect(Vec3f(origin), Vec3f(dir), 0.0f, k_infinity);
@@ -147,30 +180,30 @@ public:
                 radiance += beta * emitted(std::uint32_t(hit.element), hit.t, dir, last);
                 const Material& material = material_of(surface.element);
                 if (last.gather && !material.lobe) {
-                    if (hit.t >= last.near_distance || near_gather_continued) {
+                    if (hit.t >= last.near_distance) {
                         radiance += beta * reflected(hit);
                         break;
                     }
-                    near_gather_continued = true;
                 }
             }
             if (bounces++ >= scene_.render.max_bounces)
                 break;
 
-            const Bsdf bsdf(material_of(surface.element), surface.normal, TransportMode::radiance);
+            const Bsdf bsdf(material_of(surface.element), surface.shading, TransportMode::radiance);
             const Vec3 wo = -dir;
             if (!bsdf.is_delta())
                 radiance += beta * direct(bsdf, surface, wo, rng);
             const double u_lobe = rng.next_double();
             const Vec2 u{rng.next_double(), rng.next_double()};
             const auto sample = bsdf.sample(wo, u_lobe, u);
-            if (!sample || sample->weight.is_black())
+            if (!sample || sample->weight.is_black() ||
+                !geometric_side_agrees(surface, wo, sample->wi, sample->transmission()))
                 break;
             beta = beta * sample->weight;
             last.delta = sample->delta();
             last.only_delta = last.only_delta && last.delta;
             last.pdf = sample->pdf;
-            last.sky_normal = facing(surface.normal, wo);
+            last.sky_normal = facing(surface.shading, wo);
             if (sample->lobe == BsdfLobe::diffuse)
                 ++diffuse_bounces;
             last.gather = options_.gather == GatherMode::final_gather &&
@@ -206,7 +239,23 @@ private:
 
     SurfaceHit surface_of(const EmbreeScene::Hit& hit, const Vec3& origin, const Vec3& dir) const {
         const auto element = std::uint32_t(hit.element >= 0 ? hit.element : hit.front_element);
-        return {origin + dir * double(hit.t), mesh_.patch_of(element).normal, element};
+        const Patch& patch = mesh_.patch_of(element);
+        const Vec3 p = origin + dir * double(hit.t);
+        // The polygon's normals face its front: the back side's patch turns them round.
+        const Vec3 front = patch.back ? -patch.normal : patch.normal;
+        Vec3 shading = interpolated_normal(scene_.polygons[patch.polygon], p, front);
+        if (dot(shading, front) <= 0)
+            shading = front; // a normal that turned past the plane says nothing useful
+        return {p, patch.normal, element, patch.back ? -shading : shading};
+    }
+
+    /// Whether wi leaves on the side of the geometric normal a scattering of \p wo from this
+    /// lobe must: reflection on wo's side, transmission on the other (shading normals can
+    /// send light through the surface otherwise).
+    static bool geometric_side_agrees(const SurfaceHit& s, const Vec3& wo, const Vec3& wi,
+                                      bool transmission) {
+        const bool same = dot(wo, s.normal) * dot(wi, s.normal) > 0;
+        return same != transmission;
     }
 
     /// A ray origin off the surface, on the side \p w leaves to.
@@ -277,6 +326,11 @@ private:
         return l;
     }
 
+    /// eval() of the (reflecting) non-delta lobes, 0 where wi leaves through the surface.
+    static Rgb reflect(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, const Vec3& wi) {
+        return geometric_side_agrees(s, wo, wi, false) ? bsdf.eval(wo, wi) : Rgb{};
+    }
+
     /// Direct light at a non-delta BSDF from every source.
     Rgb direct(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, Pcg32& rng) const {
         Rgb sum;
@@ -310,7 +364,7 @@ private:
         const double cos_light = -dot(wi, patch.normal);
         if (!(cos_light > 0))
             return {};
-        const Rgb f = bsdf.eval(wo, wi);
+        const Rgb f = reflect(bsdf, s, wo, wi);
         if (f.is_black())
             return {};
         const double light_pdf =
@@ -330,7 +384,7 @@ private:
             return {};
         const Vec3 wi = to_light / dist;
         const double profile = light.profile(-wi);
-        const Rgb f = bsdf.eval(wo, wi);
+        const Rgb f = reflect(bsdf, s, wo, wi);
         if (profile <= 0 || f.is_black())
             return {};
         const float t = transmittance(offset(s, wi), wi, dist);
@@ -341,7 +395,7 @@ private:
         const Sun& sun = *scene_.sun;
         const double u1 = rng.next_double(), u2 = rng.next_double();
         if (sun_solid_angle_ <= 0) {
-            const Rgb f = bsdf.eval(wo, sun.direction);
+            const Rgb f = reflect(bsdf, s, wo, sun.direction);
             if (f.is_black())
                 return {};
             return f * sun.irradiance *
@@ -350,7 +404,7 @@ private:
         }
         const Vec3 wi =
             Frame::from_normal(sun.direction).to_world(uniform_cone(sun_cos_max_, u1, u2));
-        const Rgb f = bsdf.eval(wo, wi);
+        const Rgb f = reflect(bsdf, s, wo, wi);
         if (f.is_black())
             return {};
         const float t = transmittance(offset(s, wi), wi, std::numeric_limits<double>::infinity());
@@ -361,11 +415,11 @@ private:
     }
 
     Rgb sky_light(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, Pcg32& rng) const {
-        const Vec3 normal = facing(s.normal, wo);
+        const Vec3 normal = facing(s.shading, wo);
         const double u1 = rng.next_double(), u2 = rng.next_double();
         const Vec3 wi = Frame::from_normal(normal).to_world(cosine_hemisphere(u1, u2));
         const double light_pdf = std::max(0.0, dot(wi, normal)) * k_inv_pi;
-        const Rgb f = bsdf.eval(wo, wi);
+        const Rgb f = reflect(bsdf, s, wo, wi);
         if (!(light_pdf > 0) || f.is_black())
             return {};
         const float t = transmittance(offset(s, wi), wi, std::numeric_limits<double>::infinity());

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "common/bake_util.h"
 #include "common/test_util.h"
 #include "core/error.h"
+#include "core/image.h"
 #include "core/scene_io.h"
 #include "raytrace/raytrace.h"
 
@@ -274,6 +276,74 @@ TEST(FinalGatherCornell, AgreesWithThePathTracerPerTile) {
         }
     }
     EXPECT_EQ(failures, 0);
+}
+
+// ---- Against the Cycles reference (data/reference/cornell/README.md) ----
+
+/// Luminance standard error of each 16 × 16 tile's mean of \p stderr_image (per-pixel standard
+/// errors).
+std::vector<double> tile_standard_errors(const Image& stderr_image) {
+    constexpr int k_tile = 16;
+    std::vector<double> out;
+    for (int ty = 0; ty < stderr_image.height / k_tile; ++ty)
+        for (int tx = 0; tx < stderr_image.width / k_tile; ++tx) {
+            double var = 0;
+            for (int y = ty * k_tile; y < (ty + 1) * k_tile; ++y)
+                for (int x = tx * k_tile; x < (tx + 1) * k_tile; ++x)
+                    var += std::pow(luminance(stderr_image.at(x, y)), 2);
+            out.push_back(std::sqrt(var) / (k_tile * k_tile));
+        }
+    return out;
+}
+
+/// Per 16 × 16 tile of the Cornell box at 256², \p mode's mean luminance (from eight renders
+/// of independent seeds) against Cycles' 4 096-spp image: |Δ| ≤ 3 standard errors (both
+/// images' noise) + 0.5 % (issue #28). Returns the tiles outside it.
+int tiles_off_cycles(GatherMode mode, int spp) {
+    const Scene scene = test::cornell_box(0.1);
+    const app::BakeResult baked = test::bake(scene);
+    const raytrace::EmbreeScene rt(baked.mesh);
+    std::vector<Image> renders;
+    for (int k = 0; k < 8; ++k) {
+        Context ctx = test::quiet_context();
+        ctx.seed = std::uint64_t(k + 11);
+        RenderOptions options;
+        options.spp = spp;
+        options.gather = mode;
+        renders.push_back(
+            raytrace::render_final_gather(rt, scene, baked.solution, *scene.camera, options, ctx));
+    }
+    const Image ref = read_exr(test::source_path("data/reference/cornell/cycles_4096spp.exr"));
+    const Image ref_stderr =
+        read_exr(test::source_path("data/reference/cornell/cycles_4096spp_stderr.exr"));
+    const TileStats ours = tile_stats(renders), cycles = tile_stats({ref});
+    const std::vector<double> cycles_se = tile_standard_errors(ref_stderr);
+    int off = 0;
+    for (std::size_t t = 0; t < ours.mean.size(); ++t) {
+        const double se = std::hypot(ours.standard_error[t], cycles_se[t]);
+        const double delta = ours.mean[t] - cycles.mean[t];
+        if (std::abs(delta) > 3 * se + 0.005 * cycles.mean[t]) {
+            ++off;
+            std::printf("%s: tile (%zu, %zu): %.5f against Cycles %.5f (%+.2f %%, %.1f SE)\n",
+                        std::string(enum_name(mode)).c_str(), t % 16, t / 16, ours.mean[t],
+                        cycles.mean[t], 100 * delta / cycles.mean[t], std::abs(delta) / se);
+        }
+    }
+    return off;
+}
+
+/// Our standard errors come from eight renders: |Δ|/SE follows Student's t with 7 degrees of
+/// freedom, which leaves 2 % of the tiles beyond 3 by chance alone (5 of 256) even when the
+/// renderers agree. Measured: the path tracer has none outside; the final gather one, at the
+/// tall block's base by the floor (+3 %, 5 SE), the solution's error one bounce away.
+constexpr int k_tiles_off_by_chance = 5;
+
+TEST(FinalGatherCornell, TilesAgreeWithCycles) {
+    EXPECT_LE(tiles_off_cycles(GatherMode::final_gather, 16), k_tiles_off_by_chance);
+}
+
+TEST(FinalGatherCornell, PathTracerTilesAgreeWithCycles) {
+    EXPECT_LE(tiles_off_cycles(GatherMode::none, 16), k_tiles_off_by_chance);
 }
 
 // ---- Results do not depend on the thread count ----

@@ -243,7 +243,10 @@ private:
         const Vec3 p = origin + dir * double(hit.t);
         // The polygon's normals face its front: the back side's patch turns them round.
         const Vec3 front = patch.back ? -patch.normal : patch.normal;
-        Vec3 shading = interpolated_normal(scene_.polygons[patch.polygon], p, front);
+        // Hand-made meshes (tests) may name no polygon of the scene: shaded flat.
+        Vec3 shading = patch.polygon < scene_.polygons.size()
+                           ? interpolated_normal(scene_.polygons[patch.polygon], p, front)
+                           : front;
         if (dot(shading, front) <= 0)
             shading = front; // a normal that turned past the plane says nothing useful
         return {p, patch.normal, element, patch.back ? -shading : shading};

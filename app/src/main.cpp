@@ -78,6 +78,14 @@ struct BakeFlags {
     std::int64_t series_every_shots = 0;
 };
 
+/// `penumbra render`'s own flags; the scene and solver flags are BakeFlags'.
+struct RenderFlags {
+    BakeFlags scene;
+    int spp = 0; ///< 0 = the scene's image.spp
+    std::string gather = "final";
+    int gather_depth = 0;
+};
+
 /// `penumbra annual`'s own flags; the scene and element flags are BakeFlags'.
 struct AnnualFlags {
     BakeFlags scene;
@@ -240,6 +248,30 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
     return k_ok;
 }
 
+// Mesh, solve and the final gather: render.exr, render.png and render.json only.
+int run_render(const RenderFlags& flags, const CommonFlags& common) {
+    Context ctx = make_context(common);
+    Scene scene = load_with_overrides(flags.scene);
+    if (!scene.camera)
+        throw InputError(flags.scene.scene, "camera",
+                         "the scene has no camera, which `penumbra render` needs");
+    check_output_dir(flags.scene.output);
+    raytrace::RenderOptions render;
+    render.spp = flags.spp > 0 ? flags.spp : scene.camera->samples_per_pixel;
+    render.gather = *parse_enum<raytrace::GatherMode>(flags.gather);
+    render.gather_depth = flags.gather_depth;
+    app::BakeOptions options;
+    options.render_options = render;
+    options.keep_state = false;
+    app::BakeResult result = app::bake(scene, options, ctx);
+    app::write_render_outputs(flags.scene.output, scene, result);
+    const double seconds = result.times.empty() ? 0.0 : result.times.back().seconds;
+    ctx.info("wrote {}: {}x{} pixels, {} samples, {} gather, {:.2f} s render, {:.3g} rays/s",
+             flags.scene.output, result.render->width, result.render->height, render.spp,
+             flags.gather, seconds, seconds > 0 ? double(result.render_rays) / seconds : 0.0);
+    return k_ok;
+}
+
 // The bake pipeline without render, solver state or series: mesh.vtu, the sensors and grids.
 int run_daylight(const BakeFlags& flags, const CommonFlags& common) {
     Context ctx = make_context(common);
@@ -356,6 +388,24 @@ int main(int argc, char** argv) {
                      "write the solution every K shots as series/mesh_*.vtu + series.pvd")
         ->check(app::positive_number());
     add_common_flags(*bake_cmd, common);
+    RenderFlags render;
+    auto* render_cmd = cli.add_subcommand(
+        "render", "mesh, solve and render the scene's camera with the final gather: "
+                  "render.exr, render.png, render.json");
+    add_solve_flags(*render_cmd, render.scene);
+    render_cmd
+        ->add_option("--spp", render.spp, "samples per pixel (default: the scene's image.spp)")
+        ->check(CLI::Range(1, 1 << 20));
+    render_cmd
+        ->add_option("--gather", render.gather,
+                     "final: read the radiosity one diffuse bounce away (default); none: a pure "
+                     "path tracer; radiosity: the solution's interpolated view")
+        ->check(CLI::IsMember(enum_names<raytrace::GatherMode>()));
+    render_cmd
+        ->add_option("--gather-depth", render.gather_depth,
+                     "final: diffuse bounces traced before the solution is read (default 0)")
+        ->check(CLI::Range(0, 64));
+    add_common_flags(*render_cmd, common);
     BakeFlags daylight;
     auto* daylight_cmd = cli.add_subcommand(
         "daylight", "mesh, solve and write the daylight results of a scene with a sky or sun: "
@@ -463,6 +513,8 @@ int main(int argc, char** argv) {
     try {
         if (*bake_cmd)
             return run_bake(bake, common);
+        if (*render_cmd)
+            return run_render(render, common);
         if (*daylight_cmd)
             return run_daylight(daylight, common);
         if (*annual_cmd)

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "core/error.h"
 #include "core/files.h"
 #include "core/image.h"
 #include "viewer/vtk_output.h"
@@ -37,6 +38,20 @@ void write_render(const OutputTarget& t) {
         t.scene.camera->exposure > 0 ? t.scene.camera->exposure : auto_exposure(image);
     write_png(t.path("render.png"), image, exposure);
 }
+
+} // namespace
+
+void write_render_outputs(const std::string& dir, const Scene& scene, const BakeResult& result) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec)
+        throw ConfigError(fmt::format("cannot create output folder '{}': {}", dir, ec.message()));
+    const OutputTarget target{scene, result, dir, false};
+    write_render(target);
+    write_text_file(target.path("render.json"), render_json(scene, result));
+}
+
+namespace {
 
 bool has_grids(const OutputTarget& t) {
     return !t.scene.grids.empty();

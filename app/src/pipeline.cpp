@@ -34,6 +34,15 @@ private:
 
 } // namespace
 
+raytrace::RenderOptions default_render_options(const Scene& scene) {
+    raytrace::RenderOptions options;
+    options.spp = scene.camera ? scene.camera->samples_per_pixel : options.spp;
+    const bool lobes = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                   [](const Material& m) { return m.lobe.has_value(); });
+    options.gather = lobes ? raytrace::GatherMode::final_gather : raytrace::GatherMode::radiosity;
+    return options;
+}
+
 BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& ctx) {
     BakeResult result;
     {
@@ -84,7 +93,11 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
     }
     if (options.render && scene.camera) {
         StageTimer t(result.times, "render");
-        result.render = raytrace::render_solution(*rt, result.solution, *scene.camera, ctx);
+        result.render_options = options.render_options.value_or(default_render_options(scene));
+        const std::uint64_t before = rt->rays_traced();
+        result.render = raytrace::render_final_gather(*rt, scene, result.solution, *scene.camera,
+                                                      result.render_options, ctx);
+        result.render_rays = rt->rays_traced() - before;
     }
     result.rays += rt->rays_traced();
     return result;

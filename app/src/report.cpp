@@ -69,6 +69,32 @@ std::string summary_json(const Scene& scene, const BakeResult& result) {
     return j.dump(2) + "\n";
 }
 
+std::string render_json(const Scene& scene, const BakeResult& result) {
+    nlohmann::json j;
+    j["scene"] = scene.name;
+    j["scene_file"] = scene.file;
+    j["gather"] = enum_name(result.render_options.gather);
+    j["gather_depth"] = result.render_options.gather_depth;
+    j["spp"] = result.render_options.spp;
+    j["width"] = result.render ? result.render->width : 0;
+    j["height"] = result.render ? result.render->height : 0;
+    j["elements"] = result.mesh.element_count();
+    nlohmann::json times = nlohmann::json::object();
+    double total = 0, render_seconds = 0;
+    for (const StageTime& t : result.times) {
+        times[t.stage] = t.seconds;
+        total += t.seconds;
+        if (t.stage == "render")
+            render_seconds = t.seconds;
+    }
+    times["total"] = total;
+    j["seconds"] = times;
+    j["render_rays"] = result.render_rays;
+    j["render_rays_per_second"] =
+        render_seconds > 0 ? double(result.render_rays) / render_seconds : 0.0;
+    return j.dump(2) + "\n";
+}
+
 std::string sensors_csv(const Scene& scene, const BakeResult& result) {
     const std::optional<double> reference_lx = daylight_reference_lx(scene);
     std::string out =

@@ -498,6 +498,13 @@ void validate_camera(const Scene& scene, const Camera& camera) {
     check(camera.samples_per_pixel >= 1, scene, "image.spp", "must be >= 1");
     check(std::isfinite(camera.exposure) && camera.exposure >= 0, scene, "image.exposure",
           fmt::format("must be >= 0 (0 = automatic), got {}", camera.exposure));
+    check(std::isfinite(camera.aperture_radius_m) && camera.aperture_radius_m >= 0, scene,
+          "camera.aperture_radius",
+          fmt::format("must be >= 0 (0 = pinhole), got {}", camera.aperture_radius_m));
+    check(!camera.focus_distance_m ||
+              (std::isfinite(*camera.focus_distance_m) && *camera.focus_distance_m > 0),
+          scene, "camera.focus_distance",
+          fmt::format("must be > 0, got {}", camera.focus_distance_m.value_or(0)));
 }
 
 void validate_settings(const Scene& scene) {

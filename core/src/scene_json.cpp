@@ -881,7 +881,8 @@ void parse_grids(const Field& root, const Vec3& up, SceneSpec& spec) {
 }
 
 Camera parse_camera(const Field& field, double metres_per_unit, const Vec3& scene_up) {
-    field.expect_keys({"type", "eye", "look_at", "up", "fov_deg", "fov_axis"});
+    field.expect_keys({"type", "eye", "look_at", "up", "fov_deg", "fov_axis", "aperture_radius",
+                       "focus_distance"});
     if (field.has("type")) {
         const Field type = field.child("type");
         if (type.string() != "pinhole")
@@ -900,6 +901,10 @@ Camera parse_camera(const Field& field, double metres_per_unit, const Vec3& scen
             axis.fail(fmt::format("expected \"x\" or \"y\", got \"{}\"", value));
         camera.fov_axis_x = value == "x";
     }
+    if (field.has("aperture_radius"))
+        camera.aperture_radius_m = field.child("aperture_radius").number() * metres_per_unit;
+    if (field.has("focus_distance"))
+        camera.focus_distance_m = field.child("focus_distance").number() * metres_per_unit;
     return camera;
 }
 

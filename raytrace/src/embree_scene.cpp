@@ -463,6 +463,7 @@ EmbreeScene::Hit EmbreeScene::intersect(const Vec3f& origin, const Vec3f& direct
         return hit;
     hit.t = rayhit.ray.tfar;
     const std::uint32_t front = impl_->opaque[rayhit.hit.primID];
+    hit.front_element = std::int32_t(front);
     if (dot(Vec3(direction), mesh_.patch_of(front).normal) < 0) {
         hit.element = std::int32_t(front);
         hit.u = rayhit.hit.u;

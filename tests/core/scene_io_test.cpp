@@ -769,5 +769,29 @@ INSTANTIATE_TEST_SUITE_P(
                       std::array<double, 2>{45, 45}, std::array<double, 2>{60, 150},
                       std::array<double, 2>{0, 180}, std::array<double, 2>{1, 2}));
 
+TEST(SceneIo, ThinLensCameraKeys) {
+    const std::string dir = test::temp_dir("scene-lens");
+    const auto camera = [](const std::string& lens) {
+        return lamp_scene(R"json(,
+  "units": "mm",
+  "camera": {"eye": [0, 0, 0], "look_at": [0, 0, 1000], "up": [0, 1, 0])json" +
+                          lens + "}");
+    };
+    write_file(dir, "lens.json",
+               camera(R"json(, "aperture_radius": 20, "focus_distance": 1500)json"));
+    const Scene scene = load_scene(dir + "/lens.json");
+    EXPECT_NEAR(scene.camera->aperture_radius_m, 0.02, 1e-12);
+    EXPECT_NEAR(scene.camera->focus_distance_m.value_or(0), 1.5, 1e-12);
+    write_file(dir, "pinhole.json", camera(""));
+    EXPECT_EQ(load_scene(dir + "/pinhole.json").camera->aperture_radius_m, 0.0);
+    EXPECT_FALSE(load_scene(dir + "/pinhole.json").camera->focus_distance_m);
+    write_file(dir, "negative.json", camera(R"json(, "aperture_radius": -1)json"));
+    expect_input_error([&] { load_scene(dir + "/negative.json"); },
+                       {"negative.json", "camera.aperture_radius", ">= 0"});
+    write_file(dir, "zero.json", camera(R"json(, "focus_distance": 0)json"));
+    expect_input_error([&] { load_scene(dir + "/zero.json"); },
+                       {"zero.json", "camera.focus_distance", "> 0"});
+}
+
 } // namespace
 } // namespace penumbra

@@ -11,6 +11,7 @@
 #include "core/image.h"
 #include "core/mesh.h"
 #include "core/scene.h"
+#include "raytrace/raytrace.h"
 #include "solver/solver.h"
 
 namespace penumbra::app {
@@ -25,7 +26,9 @@ struct BakeResult {
     Solution solution;
     solver::SolveStats stats;
     std::vector<solver::SensorReading> sensors;
-    std::optional<Image> render; ///< when the scene has a camera and rendering is on
+    std::optional<Image> render;            ///< when the scene has a camera and rendering is on
+    raytrace::RenderOptions render_options; ///< how render was made
+    std::uint64_t render_rays = 0;          ///< rays the render traced
     std::vector<StageTime> times;
     std::uint64_t rays = 0;
     std::string series_dir; ///< where the solve's series was written (empty if none)
@@ -40,6 +43,8 @@ struct BakeResult {
 
 struct BakeOptions {
     bool render = true;
+    /// How to render; unset: default_render_options() of the scene.
+    std::optional<raytrace::RenderOptions> render_options;
     /// When > 0, the solve writes a VTK snapshot every this many shots, and the final solution
     /// as the last step, to series_dir/series/ and series_dir/series.pvd (viewer::SeriesWriter).
     std::int64_t series_every_shots = 0;
@@ -55,6 +60,12 @@ struct BakeOptions {
     bool keep_input_mesh = false;
 };
 
+/// \brief The render `bake` makes without options: the final gather at the camera's samples
+///        per pixel when some material has a non-diffuse lobe (the radiosity view cannot show
+///        it), else the radiosity view (GatherMode::radiosity), which is fast and enough for a
+///        diffuse scene's preview; `penumbra render` gives the final gather for any scene.
+raytrace::RenderOptions default_render_options(const Scene& scene);
+
 /// \brief Runs mesher, solver, sensors and renderer on \p scene.
 BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& ctx);
 
@@ -65,6 +76,15 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
 ///        write (a series included). Throws ExternalError/ConfigError.
 void write_outputs(const std::string& dir, const Scene& scene, const BakeResult& result,
                    bool save_state = true);
+
+/// \brief Writes `penumbra render`'s outputs into \p dir: render.exr (linear), render.png
+///        (tone-mapped as the bake's) and render.json (render_json()). Throws
+///        ExternalError/ConfigError.
+void write_render_outputs(const std::string& dir, const Scene& scene, const BakeResult& result);
+
+/// \brief render.json text: the gather mode, samples, image size, seconds per stage, the
+///        render's rays and rays per second.
+std::string render_json(const Scene& scene, const BakeResult& result);
 
 /// The solver state file a bake writes into its output folder.
 inline constexpr const char* k_solver_state_file = "solver_state.bin";

@@ -86,6 +86,12 @@ struct Camera {
     int width = 512, height = 512;
     int samples_per_pixel = 16; ///< stratified, rounded up to a square number
     double exposure = 0.0;      ///< 0 = automatic; else multiplier on radiance before sRGB
+    /// Thin-lens depth of field (the final gather, issue #28): radius of the lens, metres;
+    /// 0 = a pinhole (everything sharp).
+    double aperture_radius_m = 0.0;
+    /// Distance from the eye to the plane in focus (perpendicular to the view axis), metres;
+    /// unset = the distance to look_at.
+    std::optional<double> focus_distance_m;
 };
 
 /// \brief Discontinuity meshing (issue #5): shadow boundaries of emissive polygons, point

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/context.h"
+#include "core/enum_names.h"
 #include "core/image.h"
 #include "core/mesh.h"
 #include "core/scene.h"
@@ -40,6 +41,9 @@ public:
         std::int32_t element = -1; ///< element hit on the side facing the ray; -1 if none
         float t = 0, u = 0, v = 0; ///< distance and barycentrics of vertices 1 and 2
         bool back_of_one_sided = false;
+        /// The front (or one-sided) element of the surface hit, on either side: the renderer
+        /// follows rays inside solid glass, which meet the backs of one-sided elements.
+        std::int32_t front_element = -1;
     };
     /// Closest hit along the ray (origin, direction) within (tnear, tfar).
     Hit intersect(const Vec3f& origin, const Vec3f& direction, float tnear, float tfar) const;
@@ -64,4 +68,40 @@ private:
 Image render_solution(const EmbreeScene& scene, const Solution& solution, const Camera& camera,
                       const Context& ctx);
 
+/// \brief How `penumbra render` finds the light a diffuse surface reflects (issue #28).
+enum class GatherMode {
+    final_gather, ///< paths read the radiosity solution one diffuse bounce away (final gather)
+    none,         ///< a pure path tracer: the solution is not read
+    radiosity,    ///< the solution itself, interpolated at the camera's hits (render_solution)
+};
+
+/// \brief Settings of render_final_gather().
+struct RenderOptions {
+    int spp = 16; ///< samples per pixel, stratified (rounded up to a square number), >= 1
+    GatherMode gather = GatherMode::final_gather;
+    /// Diffuse bounces traced before the solution is read (final mode): 0 = at the first
+    /// diffuse hit's gather rays.
+    int gather_depth = 0;
+};
+
+/// \brief Renders the camera view of \p scene (the scene the mesh of \p rt was built from):
+///        direct light from every source with multiple importance sampling, glossy, mirror and
+///        glass lobes traced on, indirect diffuse light from \p solution (GatherMode), thin-lens
+///        depth of field, Scene::render's pixel filter and bounce limit (docs/rendering.md).
+///        Bitwise identical for any thread count. Returns linear radiance, W/(sr·m²).
+/// \throws ConfigError for spp < 1 or a negative gather depth.
+Image render_final_gather(const EmbreeScene& rt, const Scene& scene, const Solution& solution,
+                          const Camera& camera, const RenderOptions& options, const Context& ctx);
+
 } // namespace penumbra::raytrace
+
+namespace penumbra {
+inline constexpr EnumName<raytrace::GatherMode> k_gather_mode_names[] = {
+    {"final", raytrace::GatherMode::final_gather},
+    {"none", raytrace::GatherMode::none},
+    {"radiosity", raytrace::GatherMode::radiosity},
+};
+template <>
+inline constexpr std::span<const EnumName<raytrace::GatherMode>>
+    k_enum_names<raytrace::GatherMode> = k_gather_mode_names;
+} // namespace penumbra

@@ -1,0 +1,539 @@
+// The final gather (issue #28; docs/rendering.md): a path tracer whose diffuse bounces read
+// the radiosity solution one bounce away from the camera's hits. At every hit: emitted light
+// with multiple importance sampling against the light sampling that found it (power
+// heuristic, Veach & Guibas 1995); direct light from each source kind with the same MIS
+// (point lights and a sun of zero size are deltas: light sampling alone); one BSDF sample
+// carries the path on. A ray that leaves a diffuse lobe is a gather ray (GatherMode::
+// final_gather): where it meets a Lambertian surface far enough away, the reflected radiance
+// (B − E)/π interpolated from the vertex radiosity ends the path; near its origin (corners,
+// contact shadows, where interpolated radiosity is worst) the path goes one bounce further.
+// Streams and the row-block schedule are render_solution's, so the image does not depend on
+// the thread count.
+
+#include "raytrace/raytrace.h"
+
+#include "camera.h"
+
+#include "core/bsdf.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/rng.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace penumbra::raytrace {
+
+namespace {
+
+/// Bounces after which Russian roulette may end a path (pbrt's choice).
+constexpr int k_roulette_after = 3;
+/// A gather hit closer than this many element sizes to its origin continues the path.
+constexpr double k_near_gather_sizes = 2.0;
+/// Offset of a ray's origin along the geometric normal, relative to the scene's diagonal.
+constexpr double k_ray_offset = 1e-5;
+
+constexpr float k_infinity = std::numeric_limits<float>::infinity();
+
+double power_heuristic(double pdf_a, double pdf_b) {
+    const double a = pdf_a * pdf_a, b = pdf_b * pdf_b;
+    return a + b > 0 ? a / (a + b) : 0.0;
+}
+
+/// Cosine-distributed unit vector about +z of (u1, u2) ∈ [0, 1)².
+Vec3 cosine_hemisphere(double u1, double u2) {
+    const double r = std::sqrt(u1), phi = 2.0 * k_pi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
+}
+
+/// Uniform unit vector in the cone about +z of half-angle acos(cos_max).
+Vec3 uniform_cone(double cos_max, double u1, double u2) {
+    const double z = 1.0 - u1 * (1.0 - cos_max);
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * k_pi * u2;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+float channel_mean(const Rgb& c) {
+    return (c.r + c.g + c.b) / 3.0f;
+}
+
+/// The emitting elements, chosen in proportion to their emitted power.
+class AreaLights {
+public:
+    explicit AreaLights(const RadiosityMesh& mesh) : probability_(mesh.element_count(), 0.0) {
+        double total = 0;
+        for (std::uint32_t e = 0; e < mesh.element_count(); ++e) {
+            const double power = channel_mean(mesh.patch_of(e).emission) * mesh.element_area[e];
+            if (power > 0) {
+                elements_.push_back(e);
+                total += power;
+                cdf_.push_back(total);
+            }
+        }
+        // Backwards, so that cdf_[k − 1] is still the unnormalised sum when k reads it.
+        for (std::size_t k = elements_.size(); k-- > 0;) {
+            const double before = k == 0 ? 0.0 : cdf_[k - 1];
+            probability_[elements_[k]] = (cdf_[k] - before) / total;
+            cdf_[k] /= total;
+        }
+    }
+
+    bool empty() const { return elements_.empty(); }
+    /// The element of \p u ∈ [0, 1).
+    std::uint32_t pick(double u) const {
+        const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+        return elements_[std::min<std::size_t>(std::size_t(it - cdf_.begin()),
+                                               elements_.size() - 1)];
+    }
+    /// The probability that pick() returns \p element.
+    double probability(std::uint32_t element) const { return probability_[element]; }
+
+private:
+    std::vector<std::uint32_t> elements_;
+    std::vector<double> cdf_;
+    std::vector<double> probability_;
+};
+
+/// Where a ray met a surface, and the side whose material and normal scatter it.
+struct SurfaceHit {
+    Vec3 p;
+    Vec3 normal;           ///< geometric normal of \p element's side
+    std::uint32_t element; ///< the side facing the ray, or the front of a one-sided surface
+    Vec3 shading;          ///< the interpolated vertex normal on that side, else \p normal
+};
+
+/// Barycentric weights of \p p (in the plane) in the triangle (a, b, c), unclamped.
+std::array<double, 3> triangle_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 n = cross(b - a, c - a);
+    const double area2 = dot(n, n);
+    if (!(area2 > 0))
+        return {1.0, 0.0, 0.0};
+    const double w1 = dot(cross(p - a, c - a), n) / area2;
+    const double w2 = dot(cross(b - a, p - a), n) / area2;
+    return {1.0 - w1 - w2, w1, w2};
+}
+
+/// The polygon's vertex normals interpolated at \p p: in the fan triangle (0, k, k + 1) that
+/// contains it (the one it lies deepest in, against rounding). Unit; \p flat without normals.
+Vec3 interpolated_normal(const Polygon& polygon, const Vec3& p, const Vec3& flat) {
+    const auto& v = polygon.vertices;
+    const auto& n = polygon.normals;
+    if (n.size() != v.size() || v.size() < 3)
+        return flat;
+    double best = -std::numeric_limits<double>::infinity();
+    Vec3 normal = flat;
+    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
+        const auto w = triangle_weights(p, v[0], v[k], v[k + 1]);
+        const double depth = std::min({w[0], w[1], w[2]});
+        if (depth > best) {
+            best = depth;
+            normal = n[0] * w[0] + n[k] * w[1] + n[k + 1] * w[2];
+        }
+    }
+    const double len = length(normal);
+    return len > 0 && std::isfinite(len) ? normal / len : flat;
+}
+
+/// What a path remembers of its last scattering for MIS at the next hit.
+struct LastScatter {
+    bool delta = true;        ///< a delta lobe or the camera: no light sampling competed
+    bool only_delta = true;   ///< every scattering since the camera was a delta
+    double pdf = 0;           ///< solid-angle density of the BSDF sample
+    Vec3 sky_normal{0, 0, 1}; ///< normal about which the sky was cosine-sampled there
+    bool gather = false;      ///< the ray left a diffuse lobe and may read the solution
+    double near_distance = 0; ///< closer gather hits continue the path
+};
+
+class PathTracer {
+public:
+    PathTracer(const EmbreeScene& rt, const Scene& scene, const Solution& solution,
+               const RenderOptions& options)
+        : rt_(rt), mesh_(rt.mesh()), scene_(scene), solution_(solution), options_(options),
+          lights_(rt.mesh()),
+          has_glazing_(std::any_of(rt.mesh().patches.begin(), rt.mesh().patches.end(),
+                                   [](const Patch& p) { return p.glazing.has_value(); })),
+          offset_(k_ray_offset * std::max(rt.mesh().scene_diagonal, 1e-3)) {
+        if (scene.sun && scene.sun->angular_radius() > 0) {
+            sun_cos_max_ = std::cos(scene.sun->angular_radius());
+            sun_solid_angle_ = 2.0 * k_pi * (1.0 - sun_cos_max_);
+        }
+    }
+
+    /// Radiance arriving at the camera along \p ray.
+    Rgb trace(const CameraRay& ray, Pcg32& rng) const {
+        Rgb radiance, beta{1.0f};
+        Vec3 origin = ray.origin, dir = ray.direction;
+        LastScatter last;
+        int diffuse_bounces = 0;
+        for (int bounces = 0;;) {
+            const auto hit = rt_.intersect(Vec3f(origin), Vec3f(dir), 0.0f, k_infinity);
+            if (hit.front_element < 0) {
+                radiance += beta * escaped(dir, last);
+                break;
+            }
+            const SurfaceHit surface = surface_of(hit, origin, dir);
+            if (hit.element >= 0) {
+                radiance += beta * emitted(std::uint32_t(hit.element), hit.t, dir, last);
+                const Material& material = material_of(surface.element);
+                if (last.gather && !material.lobe) {
+                    if (hit.t >= last.near_distance) {
+                        radiance += beta * reflected(hit);
+                        break;
+                    }
+                }
+            }
+            if (bounces++ >= scene_.render.max_bounces)
+                break;
+
+            const Bsdf bsdf(material_of(surface.element), surface.shading, TransportMode::radiance);
+            const Vec3 wo = -dir;
+            if (!bsdf.is_delta())
+                radiance += beta * direct(bsdf, surface, wo, rng);
+            const double u_lobe = rng.next_double();
+            const Vec2 u{rng.next_double(), rng.next_double()};
+            const auto sample = bsdf.sample(wo, u_lobe, u);
+            if (!sample || sample->weight.is_black() ||
+                !geometric_side_agrees(surface, wo, sample->wi, sample->transmission()))
+                break;
+            beta = beta * sample->weight;
+            last.delta = sample->delta();
+            last.only_delta = last.only_delta && last.delta;
+            last.pdf = sample->pdf;
+            last.sky_normal = facing(surface.shading, wo);
+            if (sample->lobe == BsdfLobe::diffuse)
+                ++diffuse_bounces;
+            last.gather = options_.gather == GatherMode::final_gather &&
+                          sample->lobe == BsdfLobe::diffuse &&
+                          diffuse_bounces > options_.gather_depth;
+            last.near_distance = k_near_gather_sizes * element_size(surface.element);
+            origin = offset(surface, sample->wi);
+            dir = sample->wi;
+
+            if (bounces >= k_roulette_after) {
+                const float keep = std::min(1.0f, beta.max_component());
+                if (!(rng.next_float() < keep))
+                    break;
+                beta = beta / keep;
+            }
+        }
+        return radiance;
+    }
+
+private:
+    const Material& material_of(std::uint32_t element) const {
+        return scene_.materials[mesh_.patch_of(element).material];
+    }
+
+    static Vec3 facing(const Vec3& normal, const Vec3& w) {
+        return dot(normal, w) >= 0 ? normal : -normal;
+    }
+
+    /// Edge of a right isosceles triangle of the element's area: the mesh's local size.
+    double element_size(std::uint32_t element) const {
+        return std::sqrt(2.0 * mesh_.element_area[element]);
+    }
+
+    SurfaceHit surface_of(const EmbreeScene::Hit& hit, const Vec3& origin, const Vec3& dir) const {
+        const auto element = std::uint32_t(hit.element >= 0 ? hit.element : hit.front_element);
+        const Patch& patch = mesh_.patch_of(element);
+        const Vec3 p = origin + dir * double(hit.t);
+        // The polygon's normals face its front: the back side's patch turns them round.
+        const Vec3 front = patch.back ? -patch.normal : patch.normal;
+        // Hand-made meshes (tests) may name no polygon of the scene: shaded flat.
+        Vec3 shading = patch.polygon < scene_.polygons.size()
+                           ? interpolated_normal(scene_.polygons[patch.polygon], p, front)
+                           : front;
+        if (dot(shading, front) <= 0)
+            shading = front; // a normal that turned past the plane says nothing useful
+        return {p, patch.normal, element, patch.back ? -shading : shading};
+    }
+
+    /// Whether wi leaves on the side of the geometric normal a scattering of \p wo from this
+    /// lobe must: reflection on wo's side, transmission on the other (shading normals can
+    /// send light through the surface otherwise).
+    static bool geometric_side_agrees(const SurfaceHit& s, const Vec3& wo, const Vec3& wi,
+                                      bool transmission) {
+        const bool same = dot(wo, s.normal) * dot(wi, s.normal) > 0;
+        return same != transmission;
+    }
+
+    /// A ray origin off the surface, on the side \p w leaves to.
+    Vec3 offset(const SurfaceHit& s, const Vec3& w) const {
+        return s.p + s.normal * (dot(w, s.normal) >= 0 ? offset_ : -offset_);
+    }
+
+    /// Fraction of the light that passes from \p from along unit \p dir over \p distance
+    /// (panes of glazing attenuate, opaque surfaces block).
+    float transmittance(const Vec3& from, const Vec3& dir, double distance) const {
+        const float reach = std::isinf(distance) ? k_infinity : float(distance - 2.0 * offset_);
+        if (!(reach > 0))
+            return 1.0f;
+        const Segment segment{Vec3f(from), Vec3f(dir), 0.0f, reach};
+        if (!has_glazing_) {
+            // occluded() alone: the default transmittance() allocates per call.
+            std::uint8_t blocked = 0;
+            rt_.occluded(std::span(&segment, 1), std::span(&blocked, 1));
+            return blocked ? 0.0f : 1.0f;
+        }
+        float t = 0;
+        rt_.transmittance(std::span(&segment, 1), std::span(&t, 1));
+        return t;
+    }
+
+    /// Emitted radiance of \p element toward -dir, weighted against area-light sampling.
+    Rgb emitted(std::uint32_t element, float t, const Vec3& dir, const LastScatter& last) const {
+        const Patch& patch = mesh_.patch_of(element);
+        if (patch.emission.is_black())
+            return {};
+        const Rgb le = patch.emission * float(k_inv_pi);
+        if (last.delta)
+            return le;
+        const double cos_light = std::abs(dot(dir, patch.normal));
+        const double light_pdf = lights_.probability(element) * double(t) * double(t) /
+                                 (mesh_.element_area[element] * cos_light);
+        return le * float(power_heuristic(last.pdf, light_pdf));
+    }
+
+    /// The diffuse radiance the solution gives at a hit, without the emitted part:
+    /// (B − E)/π, B interpolated from the vertices of the element hit.
+    Rgb reflected(const EmbreeScene::Hit& hit) const {
+        const auto& tri = mesh_.triangles[std::uint32_t(hit.element)];
+        const auto& b = solution_.vertex_radiosity;
+        const Rgb& b0 = b[tri[0]];
+        const Rgb value = b0 + (b[tri[1]] - b0) * hit.u + (b[tri[2]] - b0) * hit.v -
+                          mesh_.patch_of(std::uint32_t(hit.element)).emission;
+        return Rgb{std::max(0.0f, value.r), std::max(0.0f, value.g), std::max(0.0f, value.b)} *
+               float(k_inv_pi);
+    }
+
+    /// What a ray that leaves the scene sees: the sky and the sun's disc, weighted against
+    /// their light sampling; the background only along delta paths from the camera (it lights
+    /// nothing).
+    Rgb escaped(const Vec3& dir, const LastScatter& last) const {
+        Rgb l;
+        if (scene_.sky) {
+            const double sky_pdf = std::max(0.0, dot(dir, last.sky_normal)) * k_inv_pi;
+            const double w = last.delta ? 1.0 : power_heuristic(last.pdf, sky_pdf);
+            l += scene_.sky->radiance(dir) * float(w);
+        } else if (last.only_delta) {
+            l += scene_.background;
+        }
+        if (sun_solid_angle_ > 0 && dot(dir, scene_.sun->direction) >= sun_cos_max_) {
+            const double w = last.delta ? 1.0 : power_heuristic(last.pdf, 1.0 / sun_solid_angle_);
+            l += scene_.sun->irradiance * float(w / sun_solid_angle_);
+        }
+        return l;
+    }
+
+    /// eval() of the (reflecting) non-delta lobes, 0 where wi leaves through the surface.
+    static Rgb reflect(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, const Vec3& wi) {
+        return geometric_side_agrees(s, wo, wi, false) ? bsdf.eval(wo, wi) : Rgb{};
+    }
+
+    /// Direct light at a non-delta BSDF from every source.
+    Rgb direct(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, Pcg32& rng) const {
+        Rgb sum;
+        if (!lights_.empty())
+            sum += area_light(bsdf, s, wo, rng);
+        for (const PointLight& light : scene_.point_lights)
+            sum += point_light(light, bsdf, s, wo);
+        if (scene_.sun)
+            sum += sun_light(bsdf, s, wo, rng);
+        if (scene_.sky)
+            sum += sky_light(bsdf, s, wo, rng);
+        return sum;
+    }
+
+    Rgb area_light(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, Pcg32& rng) const {
+        const std::uint32_t element = lights_.pick(rng.next_double());
+        double a = rng.next_double(), b = rng.next_double();
+        if (a + b > 1) {
+            a = 1 - a;
+            b = 1 - b;
+        }
+        const auto& tri = mesh_.triangles[element];
+        const Vec3 p0 = mesh_.vertex(tri[0]);
+        const Vec3 point = p0 + (mesh_.vertex(tri[1]) - p0) * a + (mesh_.vertex(tri[2]) - p0) * b;
+        const Vec3 to_light = point - s.p;
+        const double dist2 = dot(to_light, to_light), dist = std::sqrt(dist2);
+        if (!(dist > 0))
+            return {};
+        const Vec3 wi = to_light / dist;
+        const Patch& patch = mesh_.patch_of(element);
+        const double cos_light = -dot(wi, patch.normal);
+        if (!(cos_light > 0))
+            return {};
+        const Rgb f = reflect(bsdf, s, wo, wi);
+        if (f.is_black())
+            return {};
+        const double light_pdf =
+            lights_.probability(element) * dist2 / (mesh_.element_area[element] * cos_light);
+        const float t = transmittance(offset(s, wi), wi, dist);
+        if (t == 0)
+            return {};
+        const double w = power_heuristic(light_pdf, bsdf.pdf(wo, wi));
+        return f * patch.emission * float(k_inv_pi * t * w / light_pdf);
+    }
+
+    Rgb point_light(const PointLight& light, const Bsdf& bsdf, const SurfaceHit& s,
+                    const Vec3& wo) const {
+        const Vec3 to_light = light.position - s.p;
+        const double dist2 = dot(to_light, to_light), dist = std::sqrt(dist2);
+        if (!(dist > 0))
+            return {};
+        const Vec3 wi = to_light / dist;
+        const double profile = light.profile(-wi);
+        const Rgb f = reflect(bsdf, s, wo, wi);
+        if (profile <= 0 || f.is_black())
+            return {};
+        const float t = transmittance(offset(s, wi), wi, dist);
+        return f * light.intensity * float(profile * t / dist2);
+    }
+
+    Rgb sun_light(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, Pcg32& rng) const {
+        const Sun& sun = *scene_.sun;
+        const double u1 = rng.next_double(), u2 = rng.next_double();
+        if (sun_solid_angle_ <= 0) {
+            const Rgb f = reflect(bsdf, s, wo, sun.direction);
+            if (f.is_black())
+                return {};
+            return f * sun.irradiance *
+                   transmittance(offset(s, sun.direction), sun.direction,
+                                 std::numeric_limits<double>::infinity());
+        }
+        const Vec3 wi =
+            Frame::from_normal(sun.direction).to_world(uniform_cone(sun_cos_max_, u1, u2));
+        const Rgb f = reflect(bsdf, s, wo, wi);
+        if (f.is_black())
+            return {};
+        const float t = transmittance(offset(s, wi), wi, std::numeric_limits<double>::infinity());
+        const double light_pdf = 1.0 / sun_solid_angle_;
+        const double w = power_heuristic(light_pdf, bsdf.pdf(wo, wi));
+        // L / pdf = (E_n / Ω) / (1 / Ω) = E_n.
+        return f * sun.irradiance * float(t * w);
+    }
+
+    Rgb sky_light(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, Pcg32& rng) const {
+        const Vec3 normal = facing(s.shading, wo);
+        const double u1 = rng.next_double(), u2 = rng.next_double();
+        const Vec3 wi = Frame::from_normal(normal).to_world(cosine_hemisphere(u1, u2));
+        const double light_pdf = std::max(0.0, dot(wi, normal)) * k_inv_pi;
+        const Rgb f = reflect(bsdf, s, wo, wi);
+        if (!(light_pdf > 0) || f.is_black())
+            return {};
+        const float t = transmittance(offset(s, wi), wi, std::numeric_limits<double>::infinity());
+        if (t == 0)
+            return {};
+        const double w = power_heuristic(light_pdf, bsdf.pdf(wo, wi));
+        return f * scene_.sky->radiance(wi) * float(t * w / light_pdf);
+    }
+
+    const EmbreeScene& rt_;
+    const RadiosityMesh& mesh_;
+    const Scene& scene_;
+    const Solution& solution_;
+    const RenderOptions& options_;
+    AreaLights lights_;
+    bool has_glazing_ = false;
+    double offset_ = 0;
+    double sun_cos_max_ = 1, sun_solid_angle_ = 0;
+};
+
+/// One pixel: stratified samples over the filter's footprint, each with its own stream.
+struct PixelSampler {
+    const PathTracer& tracer;
+    ThinLensCamera camera;
+    int strata = 1;
+    PixelFilter filter = PixelFilter::box;
+    double filter_width = 1;
+    std::uint64_t seed = 0;
+
+    /// Weight of an offset (dx, dy) from the pixel's centre, pixels: a Gaussian of standard
+    /// deviation a sixth of the footprint (pbrt's default of radius 1.5, σ = 0.5).
+    double weight(double dx, double dy) const {
+        if (filter == PixelFilter::box)
+            return 1.0;
+        const double sigma = filter_width / 6.0;
+        return std::exp(-(dx * dx + dy * dy) / (2.0 * sigma * sigma));
+    }
+
+    Rgb pixel(int x, int y) const {
+        const Pcg32 stream = Pcg32::for_stream(RngPurpose::pixel_sample, std::uint64_t(x),
+                                               std::uint64_t(y), 0, seed);
+        RgbD sum;
+        double weights = 0;
+        for (int sy = 0; sy < strata; ++sy) {
+            for (int sx = 0; sx < strata; ++sx) {
+                Pcg32 rng = stream;
+                rng.advance(std::int64_t(sy * strata + sx) << 16);
+                const double dx = ((sx + rng.next_double()) / strata - 0.5) * filter_width;
+                const double dy = ((sy + rng.next_double()) / strata - 0.5) * filter_width;
+                const double lu = rng.next_double(), lv = rng.next_double();
+                const CameraRay ray = camera.ray(x + 0.5 + dx, y + 0.5 + dy, lu, lv);
+                const double w = weight(dx, dy);
+                sum += RgbD(tracer.trace(ray, rng)) * w;
+                weights += w;
+            }
+        }
+        return {float(sum.r / weights), float(sum.g / weights), float(sum.b / weights)};
+    }
+};
+
+void check_options(const RenderOptions& options, const Solution& solution,
+                   const RadiosityMesh& mesh) {
+    if (options.spp < 1)
+        throw ConfigError(fmt::format("render: spp {} must be at least 1", options.spp));
+    if (options.gather_depth < 0)
+        throw ConfigError(
+            fmt::format("render: gather depth {} must be at least 0", options.gather_depth));
+    if (options.gather != GatherMode::none &&
+        solution.vertex_radiosity.size() != mesh.vertex_count())
+        throw InternalError(
+            fmt::format("render_final_gather: {} vertex radiosities for {} vertices",
+                        solution.vertex_radiosity.size(), mesh.vertex_count()));
+}
+
+} // namespace
+
+Image render_final_gather(const EmbreeScene& rt, const Scene& scene, const Solution& solution,
+                          const Camera& camera, const RenderOptions& options, const Context& ctx) {
+    check_options(options, solution, rt.mesh());
+    Camera sampled = camera;
+    sampled.samples_per_pixel = options.spp;
+    if (options.gather == GatherMode::radiosity)
+        return render_solution(rt, solution, sampled, ctx);
+
+    const PathTracer tracer(rt, scene, solution, options);
+    const PixelSampler sampler{tracer,
+                               make_thin_lens(sampled),
+                               strata_per_axis(options.spp),
+                               scene.render.pixel_filter,
+                               scene.render.filter_width_px,
+                               ctx.seed};
+    Image image(camera.width, camera.height);
+    ProgressStage stage(ctx, "render");
+    const std::uint64_t rays_before = rt.rays_traced();
+    run_in_arena(ctx, [&] {
+        // Row blocks run one after another so that progress is reported from this thread only.
+        const int rows_per_block = std::max(4, 2 * thread_count(ctx));
+        for (int y0 = 0; y0 < image.height; y0 += rows_per_block) {
+            const int y1 = std::min(image.height, y0 + rows_per_block);
+            parallel_for(blocked_range<int>(y0, y1, 1), [&](const blocked_range<int>& rows) {
+                for (int y = rows.begin(); y != rows.end(); ++y)
+                    for (int x = 0; x < image.width; ++x)
+                        image.at(x, y) = sampler.pixel(x, y);
+            });
+            stage.update(double(y1) / image.height);
+        }
+    });
+    ctx.debug("render ({} gather): {}x{} pixels, {} samples each, {} rays",
+              enum_name(options.gather), image.width, image.height, sampler.strata * sampler.strata,
+              rt.rays_traced() - rays_before);
+    return image;
+}
+
+} // namespace penumbra::raytrace

@@ -1,0 +1,399 @@
+// The final gather (issue #28) against analytic values and against itself in its other mode:
+// the white furnace, thin-lens blur circles, the final gather against the pure path tracer on
+// the Cornell box per tile, thread-count independence, and bad input.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "app/pipeline.h"
+#include "common/bake_util.h"
+#include "common/test_util.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/scene_io.h"
+#include "raytrace/raytrace.h"
+
+namespace penumbra {
+namespace {
+
+using raytrace::GatherMode;
+using raytrace::RenderOptions;
+
+Image render(const app::BakeResult& baked, const Scene& scene, const RenderOptions& options,
+             const Context& ctx) {
+    const raytrace::EmbreeScene rt(baked.mesh);
+    return raytrace::render_final_gather(rt, scene, baked.solution, *scene.camera, options, ctx);
+}
+
+double luminance(const Rgb& c) {
+    return 0.265 * c.r + 0.670 * c.g + 0.065 * c.b;
+}
+
+struct Moments {
+    double mean = 0, sd = 0;
+};
+
+Moments channel_moments(const Image& image) {
+    Moments m;
+    for (const Rgb& p : image.pixels)
+        m.mean += p.g;
+    m.mean /= double(image.pixels.size());
+    for (const Rgb& p : image.pixels)
+        m.sd += (p.g - m.mean) * (p.g - m.mean);
+    m.sd = std::sqrt(m.sd / double(image.pixels.size() - 1));
+    return m;
+}
+
+// ---- White furnace: a closed room emitting E (radiosity) with reflectance ρ everywhere ----
+
+Scene furnace(double rho, double exitance) {
+    Scene scene;
+    const auto m =
+        test::add_material(scene, "furnace", Rgb(float(rho)), Rgb(float(exitance / k_pi)));
+    test::add_room(scene, {0, 0, 0}, {1, 1.5, 0.8}, m);
+    scene.mesher.max_edge_length = 0.1;
+    scene.solver.method = SolverMethod::shooting; // a furnace converges slowly otherwise
+    scene.solver.residual = 1e-5;
+    scene.render.max_bounces = 64; // ρ^65 of the answer left out: below 1e-19
+    Camera camera;
+    camera.eye = {0.3, 0.4, 0.3};
+    camera.look_at = {0.9, 1.2, 0.5}; // a corner: three walls, two edges
+    camera.up = {0, 0, 1};
+    camera.fov_deg = 70;
+    camera.width = camera.height = 24;
+    scene.camera = camera;
+    return scene;
+}
+
+/// Every pixel reads L = E / (π (1 − ρ)): the image mean within 4 of its standard errors (the
+/// pixels' own scatter, as all share that expectation) and no pixel beyond 6 deviations.
+void expect_furnace(const Image& image, double expected) {
+    const Moments m = channel_moments(image);
+    const double standard_error = m.sd / std::sqrt(double(image.pixels.size()));
+    EXPECT_NEAR(m.mean, expected, 4 * standard_error + 1e-6 * expected)
+        << "sd " << m.sd << " over " << image.pixels.size() << " pixels";
+    for (const Rgb& p : image.pixels)
+        ASSERT_NEAR(p.g, expected, 6 * m.sd + 1e-6 * expected);
+    EXPECT_LT(m.sd, 0.2 * expected); // the estimator is not degenerate
+}
+
+TEST(FinalGatherFurnace, PathTracerReadsTheGeometricSeries) {
+    const double rho = 0.5, exitance = 1.0;
+    const Scene scene = furnace(rho, exitance);
+    const app::BakeResult baked = test::bake(scene);
+    RenderOptions options;
+    options.spp = 16;
+    options.gather = GatherMode::none;
+    expect_furnace(render(baked, scene, options, test::quiet_context()),
+                   exitance / (k_pi * (1 - rho)));
+}
+
+TEST(FinalGatherFurnace, FinalGatherReadsTheGeometricSeries) {
+    // The solution holds B = E / (1 − ρ) within the solver's residual (1e-5); the gather adds
+    // emitted, direct and (B − E)/π one bounce away, which sum to the same.
+    const double rho = 0.7, exitance = 2.0;
+    const Scene scene = furnace(rho, exitance);
+    const app::BakeResult baked = test::bake(scene);
+    for (int depth : {0, 1}) {
+        RenderOptions options;
+        options.spp = 16;
+        options.gather_depth = depth;
+        expect_furnace(render(baked, scene, options, test::quiet_context()),
+                       exitance / (k_pi * (1 - rho)));
+    }
+}
+
+// ---- Thin lens: a small emitting disc at distance d, the lens focused at f ----
+
+struct LensSetup {
+    double distance = 4;    ///< d, metres from the eye along the axis
+    double focus = 2;       ///< f
+    double aperture = 0.09; ///< A, lens radius
+    double disc_radius = 0.015;
+};
+
+Scene disc_scene(const LensSetup& s) {
+    Scene scene;
+    const auto m = test::add_material(scene, "disc", Rgb(0.0f), Rgb(1.0f), false);
+    Polygon disc;
+    disc.material = m;
+    disc.name = "disc";
+    constexpr int k_sides = 128;
+    for (int k = 0; k < k_sides; ++k) {
+        // Clockwise seen from +z: the front faces the eye at the origin.
+        const double phi = -2 * k_pi * k / k_sides;
+        disc.vertices.push_back(
+            {s.disc_radius * std::cos(phi), s.disc_radius * std::sin(phi), s.distance});
+    }
+    scene.polygons.push_back(disc);
+    Camera camera;
+    camera.eye = {0, 0, 0};
+    camera.look_at = {0, 0, 1};
+    camera.up = {0, 1, 0};
+    camera.fov_deg = 20;
+    camera.width = camera.height = 96;
+    camera.aperture_radius_m = s.aperture;
+    camera.focus_distance_m = s.focus;
+    scene.camera = camera;
+    return scene;
+}
+
+/// Second moment of the image's luminance about its centroid, pixels², less the pixel's own
+/// footprint (a box of one pixel adds 1/12 per axis).
+double second_moment_px2(const Image& image) {
+    double sum = 0, sx = 0, sy = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const double w = luminance(image.at(x, y));
+            sum += w;
+            sx += w * (x + 0.5);
+            sy += w * (y + 0.5);
+        }
+    const double cx = sx / sum, cy = sy / sum;
+    double m = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const double dx = x + 0.5 - cx, dy = y + 0.5 - cy;
+            m += luminance(image.at(x, y)) * (dx * dx + dy * dy);
+        }
+    return m / sum - 2.0 / 12.0;
+}
+
+/// Pixels per unit of the image plane at distance 1 (tan of the angle off axis).
+double pixels_per_tan(const Camera& c) {
+    return c.width / (2 * std::tan(c.fov_deg * k_pi / 360));
+}
+
+TEST(FinalGatherThinLens, DiscOutOfFocusBlursToTheCircleOfConfusion) {
+    const LensSetup s;
+    const Scene scene = disc_scene(s);
+    const app::BakeResult baked = test::bake(scene);
+    RenderOptions options;
+    options.spp = 256;
+    options.gather = GatherMode::none;
+    const Image image = render(baked, scene, options, test::quiet_context());
+    // A point at d images on the plane in focus as a uniform disc of radius A |d − f| / d;
+    // seen from the eye (÷ f) in pixels. Uniform discs have second moment R²/2, and the
+    // disc's own image (radius r/d) convolves with it: the moments add.
+    const double scale = pixels_per_tan(*scene.camera);
+    const double own = s.disc_radius / s.distance * scale;
+    const double expected =
+        s.aperture * std::abs(s.distance - s.focus) / s.distance / s.focus * scale;
+    const double measured = std::sqrt(2 * second_moment_px2(image) - own * own);
+    EXPECT_NEAR(measured, expected, 0.02 * expected) << "blur radius, pixels";
+    EXPECT_GT(expected, 5.0); // a blur well above the pixel
+}
+
+TEST(FinalGatherThinLens, DiscAtTheFocusDistanceStaysSharp) {
+    LensSetup s;
+    s.focus = s.distance;
+    s.disc_radius = 0.06; // an image of 4 pixels' radius: pixel sampling adds little
+    const Scene lens = disc_scene(s);
+    s.aperture = 0;
+    const Scene pinhole = disc_scene(s);
+    RenderOptions options;
+    options.spp = 64;
+    options.gather = GatherMode::none;
+    const double with_lens =
+        second_moment_px2(render(test::bake(lens), lens, options, test::quiet_context()));
+    const double without =
+        second_moment_px2(render(test::bake(pinhole), pinhole, options, test::quiet_context()));
+    // The disc's own image, radius r/d: second moment r²/(2d²) in pixels².
+    const double own = s.disc_radius / s.distance * pixels_per_tan(*lens.camera);
+    EXPECT_NEAR(without, own * own / 2, 0.05 * own * own / 2);
+    EXPECT_NEAR(with_lens, without, 0.02 * without);
+}
+
+// ---- The final gather against the pure path tracer on the Cornell box ----
+
+struct TileStats {
+    std::vector<double> mean; ///< per tile, over the renders
+    std::vector<double> standard_error;
+};
+
+/// Per 16 × 16 tile, the mean luminance of \p renders and its standard error from their
+/// scatter (independent seeds).
+TileStats tile_stats(const std::vector<Image>& renders) {
+    constexpr int k_tile = 16;
+    const int tiles_x = renders[0].width / k_tile, tiles_y = renders[0].height / k_tile;
+    TileStats stats;
+    for (int ty = 0; ty < tiles_y; ++ty)
+        for (int tx = 0; tx < tiles_x; ++tx) {
+            std::vector<double> means;
+            for (const Image& image : renders) {
+                double sum = 0;
+                for (int y = ty * k_tile; y < (ty + 1) * k_tile; ++y)
+                    for (int x = tx * k_tile; x < (tx + 1) * k_tile; ++x)
+                        sum += luminance(image.at(x, y));
+                means.push_back(sum / (k_tile * k_tile));
+            }
+            double mean = 0, var = 0;
+            for (double m : means)
+                mean += m;
+            mean /= double(means.size());
+            for (double m : means)
+                var += (m - mean) * (m - mean);
+            var /= double(means.size() - 1);
+            stats.mean.push_back(mean);
+            stats.standard_error.push_back(std::sqrt(var / double(means.size())));
+        }
+    return stats;
+}
+
+TEST(FinalGatherCornell, AgreesWithThePathTracerPerTile) {
+    Scene scene = test::cornell_box(0.05);
+    scene.camera->width = scene.camera->height = 64;
+    const app::BakeResult baked = test::bake(scene);
+    const raytrace::EmbreeScene rt(baked.mesh);
+    constexpr int k_renders = 8;
+    std::vector<Image> final_renders, path_renders;
+    for (int k = 0; k < k_renders; ++k) {
+        Context ctx = test::quiet_context();
+        ctx.seed = std::uint64_t(k + 1);
+        RenderOptions options;
+        options.spp = 16;
+        final_renders.push_back(
+            raytrace::render_final_gather(rt, scene, baked.solution, *scene.camera, options, ctx));
+        options.gather = GatherMode::none;
+        options.spp = 64; // the path tracer is the noisier
+        path_renders.push_back(
+            raytrace::render_final_gather(rt, scene, baked.solution, *scene.camera, options, ctx));
+    }
+    const TileStats fg = tile_stats(final_renders), pt = tile_stats(path_renders);
+    int failures = 0;
+    for (std::size_t t = 0; t < fg.mean.size(); ++t) {
+        const double se = std::hypot(fg.standard_error[t], pt.standard_error[t]);
+        const double allowed = 3 * se + 0.005 * pt.mean[t];
+        if (std::abs(fg.mean[t] - pt.mean[t]) > allowed) {
+            ++failures;
+            ADD_FAILURE() << "tile " << t << ": final " << fg.mean[t] << ", path traced "
+                          << pt.mean[t] << " ± " << se;
+        }
+    }
+    EXPECT_EQ(failures, 0);
+}
+
+// ---- Against the Cycles reference (data/reference/cornell/README.md) ----
+
+/// Luminance standard error of each 16 × 16 tile's mean of \p stderr_image (per-pixel standard
+/// errors).
+std::vector<double> tile_standard_errors(const Image& stderr_image) {
+    constexpr int k_tile = 16;
+    std::vector<double> out;
+    for (int ty = 0; ty < stderr_image.height / k_tile; ++ty)
+        for (int tx = 0; tx < stderr_image.width / k_tile; ++tx) {
+            double var = 0;
+            for (int y = ty * k_tile; y < (ty + 1) * k_tile; ++y)
+                for (int x = tx * k_tile; x < (tx + 1) * k_tile; ++x)
+                    var += std::pow(luminance(stderr_image.at(x, y)), 2);
+            out.push_back(std::sqrt(var) / (k_tile * k_tile));
+        }
+    return out;
+}
+
+/// Per 16 × 16 tile of the Cornell box at 256², \p mode's mean luminance (from eight renders
+/// of independent seeds) against Cycles' 4 096-spp image: |Δ| ≤ 3 standard errors (both
+/// images' noise) + 0.5 % (issue #28). Returns the tiles outside it.
+int tiles_off_cycles(GatherMode mode, int spp) {
+    const Scene scene = test::cornell_box(0.1);
+    const app::BakeResult baked = test::bake(scene);
+    const raytrace::EmbreeScene rt(baked.mesh);
+    std::vector<Image> renders;
+    for (int k = 0; k < 8; ++k) {
+        Context ctx = test::quiet_context();
+        ctx.seed = std::uint64_t(k + 11);
+        RenderOptions options;
+        options.spp = spp;
+        options.gather = mode;
+        renders.push_back(
+            raytrace::render_final_gather(rt, scene, baked.solution, *scene.camera, options, ctx));
+    }
+    const Image ref = read_exr(test::source_path("data/reference/cornell/cycles_4096spp.exr"));
+    const Image ref_stderr =
+        read_exr(test::source_path("data/reference/cornell/cycles_4096spp_stderr.exr"));
+    const TileStats ours = tile_stats(renders), cycles = tile_stats({ref});
+    const std::vector<double> cycles_se = tile_standard_errors(ref_stderr);
+    int off = 0;
+    for (std::size_t t = 0; t < ours.mean.size(); ++t) {
+        const double se = std::hypot(ours.standard_error[t], cycles_se[t]);
+        const double delta = ours.mean[t] - cycles.mean[t];
+        if (std::abs(delta) > 3 * se + 0.005 * cycles.mean[t]) {
+            ++off;
+            std::printf("%s: tile (%zu, %zu): %.5f against Cycles %.5f (%+.2f %%, %.1f SE)\n",
+                        std::string(enum_name(mode)).c_str(), t % 16, t / 16, ours.mean[t],
+                        cycles.mean[t], 100 * delta / cycles.mean[t], std::abs(delta) / se);
+        }
+    }
+    return off;
+}
+
+/// Our standard errors come from eight renders: |Δ|/SE follows Student's t with 7 degrees of
+/// freedom, which leaves 2 % of the tiles beyond 3 by chance alone (5 of 256) even when the
+/// renderers agree. Measured: the path tracer has none outside; the final gather one, at the
+/// tall block's base by the floor (+3 %, 5 SE), the solution's error one bounce away.
+constexpr int k_tiles_off_by_chance = 5;
+
+TEST(FinalGatherCornell, TilesAgreeWithCycles) {
+    EXPECT_LE(tiles_off_cycles(GatherMode::final_gather, 16), k_tiles_off_by_chance);
+}
+
+TEST(FinalGatherCornell, PathTracerTilesAgreeWithCycles) {
+    EXPECT_LE(tiles_off_cycles(GatherMode::none, 16), k_tiles_off_by_chance);
+}
+
+// ---- Results do not depend on the thread count ----
+
+TEST(FinalGather, BitwiseIdenticalForOneTwoAndFourThreads) {
+    Scene scene = test::cornell_box(0.1);
+    scene.camera->width = scene.camera->height = 32;
+    scene.camera->aperture_radius_m = 0.01;
+    const app::BakeResult baked = test::bake(scene);
+    for (GatherMode mode : {GatherMode::final_gather, GatherMode::none}) {
+        RenderOptions options;
+        options.spp = 4;
+        options.gather = mode;
+        const Image one = render(baked, scene, options, test::quiet_context(1));
+        for (int threads : {2, 4}) {
+            const Image other = render(baked, scene, options, test::quiet_context(threads));
+            ASSERT_EQ(one.pixels.size(), other.pixels.size());
+            EXPECT_TRUE(std::equal(one.pixels.begin(), one.pixels.end(), other.pixels.begin()))
+                << enum_name(mode) << ", " << threads << " threads";
+        }
+    }
+}
+
+// ---- Bad input ----
+
+TEST(FinalGather, SppBelowOneIsAOneLineError) {
+    Scene scene = test::cornell_box(0.2);
+    scene.camera->width = scene.camera->height = 8;
+    const app::BakeResult baked = test::bake(scene);
+    RenderOptions options;
+    options.spp = 0;
+    try {
+        render(baked, scene, options, test::quiet_context());
+        FAIL() << "no error";
+    } catch (const ConfigError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        EXPECT_NE(message.find("spp"), std::string::npos) << message;
+    }
+}
+
+TEST(RenderCommand, BadFlagsAreOneLineErrors) {
+    const std::string scene = test::source_path("data/cornell/scene.json");
+    const std::string out = test::temp_dir("render_bad_flags");
+    for (const std::string flags : {"--gather photons", "--spp 0", "--gather-depth -1"}) {
+        const test::RunResult r = test::run_cli("render " + scene + " -o " + out + " " + flags);
+        EXPECT_EQ(r.exit_code, 3) << flags << ": " << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << flags << ": " << r.err;
+    }
+}
+
+} // namespace
+} // namespace penumbra

@@ -22,7 +22,6 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
-#include <numeric>
 #include <optional>
 
 #include "core/error.h"
@@ -197,27 +196,18 @@ LeafDirect leaf_direct(const Hierarchy& h, const LinkStore& links, Clusters& clu
 
 namespace {
 
-// The leaves of the built system as elements: the leaf mesh (none where no root was
-// subdivided: the input mesh is the leaf mesh, and the caller traces on the BVH it has) and
-// the leaves' values.
+// The leaves of the built system as elements (none where no root was subdivided: the input
+// mesh is the leaf mesh, and the caller traces on the BVH it has) and the leaves' values.
 struct LeafElements {
-    bool subdivided = false;
     LeafMesh leaf;
     ElementResult er;
 };
 
-LeafElements leaf_elements(const HierarchicalSystem& sys, const RadiosityMesh& mesh) {
-    const Hierarchy& h = sys.h;
+LeafElements leaves_with_values(const HierarchicalSystem& sys, const RadiosityMesh& mesh) {
     const NodeValues& v = sys.values;
     LeafElements out;
-    out.subdivided = h.size() > h.root_count;
-    LeafMesh& leaf = out.leaf;
-    if (out.subdivided) {
-        leaf = build_leaf_mesh(mesh, h);
-    } else {
-        leaf.element_node.resize(h.root_count);
-        std::iota(leaf.element_node.begin(), leaf.element_node.end(), 0u);
-    }
+    out.leaf = leaf_elements(mesh, sys.h);
+    const LeafMesh& leaf = out.leaf;
     ElementResult& er = out.er;
     for (std::vector<Rgb>* a : {&er.radiosity, &er.h_direct, &er.h_indirect})
         a->reserve(leaf.element_node.size());
@@ -251,7 +241,7 @@ Solution leaf_solution(HierarchicalSystem& sys, const Scene& scene, const Radios
     // Vertices gather direct light from the emitting roots: the same surfaces as the emitting
     // leaves, in fewer triangles (the same ones where no root was subdivided).
     std::optional<ElementGeometry> own_root_geo;
-    if (leaves.subdivided)
+    if (leaves.leaf.subdivided)
         own_root_geo.emplace(mesh);
     const ElementGeometry& root_geo = own_root_geo ? *own_root_geo : geo;
     std::vector<Rgb> root_emission(mesh.element_count());
@@ -259,7 +249,7 @@ Solution leaf_solution(HierarchicalSystem& sys, const Scene& scene, const Radios
         root_emission[e] = mesh.patch_of(std::uint32_t(e)).emission;
     const LeafDirect sources =
         leaf_direct(sys.h, sys.links, sys.clusters, sys.values.b, leaves.leaf.element_node);
-    const RadiosityMesh& out_mesh = leaves.subdivided ? leaves.leaf.mesh : mesh;
+    const RadiosityMesh& out_mesh = leaves.leaf.of(mesh);
     const std::vector<Rgb> sky =
         scene.sky
             ? sky_at_vertices(*scene.sky, mesh, root_geo, out_mesh,
@@ -299,8 +289,8 @@ SolveResult output_stage(HierarchicalSystem& sys, const Scene& scene, const Radi
                          const SolveObserver* observer, const SweepLog& log) {
     auto t0 = Clock::now();
     release_sweep_values(sys.values);
-    LeafElements leaves = leaf_elements(sys, mesh);
-    const RadiosityMesh& out_mesh = leaves.subdivided ? leaves.leaf.mesh : mesh;
+    LeafElements leaves = leaves_with_values(sys, mesh);
+    const RadiosityMesh& out_mesh = leaves.leaf.of(mesh);
     const ElementGeometry geo(out_mesh);
     const bool clustered = sys.clusters.enabled;
     SolveResult result;
@@ -318,11 +308,11 @@ SolveResult output_stage(HierarchicalSystem& sys, const Scene& scene, const Radi
     }
     // The last pass is the solution itself where it lives on the roots.
     if (observer && observer->on_pass)
-        observer->on_pass(leaves.subdivided ? root_snapshot(mesh, sys.h, sys.values)
-                                            : result.solution,
+        observer->on_pass(leaves.leaf.subdivided ? root_snapshot(mesh, sys.h, sys.values)
+                                                 : result.solution,
                           log.total, 0.0, true);
     result.state = saved_state(sys, mesh, clustered);
-    if (leaves.subdivided)
+    if (leaves.leaf.subdivided)
         result.refined_mesh = std::move(leaves.leaf.mesh);
     return result;
 }

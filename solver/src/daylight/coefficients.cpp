@@ -7,8 +7,6 @@
 
 #include "solver/daylight_coefficients.h"
 
-#include <numeric>
-
 #include "core/parallel.h"
 #include "hierarchical_system.h"
 #include "hierarchy/leaf_mesh.h"
@@ -75,26 +73,14 @@ Eigen::MatrixXf sensor_direct(const Scene& scene, const Sky& sky, const ElementG
     return out;
 }
 
-// The leaf mesh the solution lives on, and each leaf element's node.
-LeafMesh leaves_of(const RadiosityMesh& mesh, const Hierarchy& h) {
-    if (h.size() > h.root_count)
-        return build_leaf_mesh(mesh, h);
-    LeafMesh leaf;
-    leaf.mesh = mesh;
-    leaf.element_node.resize(h.root_count);
-    std::iota(leaf.element_node.begin(), leaf.element_node.end(), 0u);
-    return leaf;
-}
-
 // Each sensor's weights of the leaf elements that can send light on (they reflect or pass
 // it): B − E at the sensor is then a dot product per patch.
-std::vector<std::vector<ElementWeight>> sensor_weights(const Scene& scene, const LeafMesh& leaf,
-                                                       const ElementGeometry& geo,
-                                                       const VisibilityQuery& visibility,
-                                                       const Context& ctx) {
+std::vector<std::vector<ElementWeight>>
+sensor_weights(const Scene& scene, const RadiosityMesh& leaf_mesh, const ElementGeometry& geo,
+               const VisibilityQuery& visibility, const Context& ctx) {
     std::vector<std::uint8_t> candidate(geo.size(), 0);
     for (std::size_t e = 0; e < geo.size(); ++e) {
-        const Patch& p = leaf.mesh.patch_of(std::uint32_t(e));
+        const Patch& p = leaf_mesh.patch_of(std::uint32_t(e));
         candidate[e] = (!p.reflectance.is_black() || !p.diffuse_transmittance.is_black()) ? 1 : 0;
     }
     std::vector<std::vector<ElementWeight>> out(scene.sensors.size());
@@ -192,10 +178,10 @@ DaylightCoefficients daylight_coefficients(const Scene& scene, const RadiosityMe
         dc.nodes = sys->h.size();
         dc.links = sys->links.link_count();
         const Eigen::MatrixXf roots = root_coefficients(*sys, lit, visibility, patches, ctx);
-        const LeafMesh leaf = leaves_of(mesh, sys->h);
-        const ElementGeometry geo(leaf.mesh);
+        const LeafMesh leaf = leaf_elements(mesh, sys->h);
+        const ElementGeometry geo(leaf.of(mesh));
         dc.direct = sensor_direct(scene, *lit.sky, geo, visibility, patches, ctx);
-        const auto weights = sensor_weights(scene, leaf, geo, visibility, ctx);
+        const auto weights = sensor_weights(scene, leaf.of(mesh), geo, visibility, ctx);
         const auto sensors = Eigen::Index(scene.sensors.size());
         dc.indirect = Eigen::MatrixXf::Zero(sensors, Eigen::Index(patches.count));
         dc.sun_indirect = Eigen::MatrixXf::Zero(sensors, Eigen::Index(sun_directions.size()));

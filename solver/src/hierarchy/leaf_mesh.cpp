@@ -1,5 +1,7 @@
 #include "hierarchy/leaf_mesh.h"
 
+#include <numeric>
+
 #include <bit>
 #include <map>
 
@@ -104,6 +106,18 @@ LeafMesh build_leaf_mesh(const RadiosityMesh& base, const Hierarchy& h) {
         }
     }
     return out;
+}
+
+LeafMesh leaf_elements(const RadiosityMesh& base, const Hierarchy& h) {
+    if (h.size() > h.root_count) {
+        LeafMesh leaf = build_leaf_mesh(base, h);
+        leaf.subdivided = true;
+        return leaf;
+    }
+    LeafMesh leaf;
+    leaf.element_node.resize(h.root_count);
+    std::iota(leaf.element_node.begin(), leaf.element_node.end(), 0u);
+    return leaf;
 }
 
 } // namespace penumbra::solver

@@ -3,7 +3,8 @@
 // the element hit (the side facing the camera). Samples are averaged with a box filter.
 // Each pixel draws from its own content-named stream (pbrt-v4's StartPixelSample pattern:
 // advance by sample index × 2^16), and each pixel is written only by the task that owns its
-// row, so the image is bitwise identical for any thread count or schedule.
+// row, so the image is bitwise identical for any thread count or schedule. render_hits shares
+// the camera, sampling and rows, with the radiance of a hit given by its caller.
 
 #include "raytrace/raytrace.h"
 
@@ -18,31 +19,21 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace penumbra::raytrace {
 
 namespace {
 
-struct PixelRenderer {
-    const EmbreeScene& scene;
-    const std::vector<Rgb>& vertex_radiosity;
+// Averages along(direction) over a pixel's stratified samples. Each pixel draws from its own
+// content-named stream.
+template <typename Along> struct PixelSampler {
     PinholeCamera camera;
     int strata = 1;
     std::uint64_t seed = 0;
+    Along along; ///< Rgb along(const Vec3f& unit_direction)
 
-    /// Radiosity B seen along the ray; black for misses and backs of one-sided surfaces.
-    Rgb radiosity_along(const Vec3f& dir) const {
-        auto hit =
-            scene.intersect(Vec3f(camera.eye), dir, 0.0f, std::numeric_limits<float>::infinity());
-        if (hit.element < 0)
-            return {};
-        const auto& t = scene.mesh().triangles[std::uint32_t(hit.element)];
-        const Rgb& b0 = vertex_radiosity[t[0]];
-        // Written as offsets from vertex 0 so that a constant field is reproduced exactly.
-        return b0 + (vertex_radiosity[t[1]] - b0) * hit.u + (vertex_radiosity[t[2]] - b0) * hit.v;
-    }
-
-    Rgb pixel(int x, int y) const {
+    RgbD mean(int x, int y) const {
         const Pcg32 stream = Pcg32::for_stream(RngPurpose::pixel_sample, std::uint64_t(x),
                                                std::uint64_t(y), 0, seed);
         RgbD sum;
@@ -52,16 +43,41 @@ struct PixelRenderer {
                 rng.advance(std::int64_t(sy * strata + sx) << 16);
                 double jx = (sx + double(rng.next_float())) / strata;
                 double jy = (sy + double(rng.next_float())) / strata;
-                sum += RgbD(radiosity_along(camera.direction(x + jx, y + jy)));
+                sum += RgbD(along(camera.direction(x + jx, y + jy)));
             }
         }
-        // Float samples summed in double lose nothing (below 2^29 samples), so a constant B
-        // gives exactly B/π.
+        // Float samples summed in double lose nothing (below 2^29 samples), so a constant
+        // value is reproduced exactly.
         const double count = double(strata) * double(strata);
-        return {float(sum.r / count * k_inv_pi), float(sum.g / count * k_inv_pi),
-                float(sum.b / count * k_inv_pi)};
+        return {sum.r / count, sum.g / count, sum.b / count};
     }
 };
+
+template <typename Along>
+PixelSampler<Along> make_sampler(const Camera& camera, const Context& ctx, Along along) {
+    return {make_camera(camera), strata_per_axis(camera.samples_per_pixel), ctx.seed,
+            std::move(along)};
+}
+
+// Fills \p image with pixel(x, y), rows in parallel; each pixel written by the task owning its
+// row, so the image does not depend on the thread count or schedule.
+template <typename Pixel>
+void render_rows(Image& image, const Context& ctx, const char* stage_name, const Pixel& pixel) {
+    ProgressStage stage(ctx, stage_name);
+    run_in_arena(ctx, [&] {
+        // Row blocks run one after another so that progress is reported from this thread only.
+        const int rows_per_block = std::max(8, 4 * thread_count(ctx));
+        for (int y0 = 0; y0 < image.height; y0 += rows_per_block) {
+            const int y1 = std::min(image.height, y0 + rows_per_block);
+            parallel_for(blocked_range<int>(y0, y1, 1), [&](const blocked_range<int>& rows) {
+                for (int y = rows.begin(); y != rows.end(); ++y)
+                    for (int x = 0; x < image.width; ++x)
+                        image.at(x, y) = pixel(x, y);
+            });
+            stage.update(double(y1) / image.height);
+        }
+    });
+}
 
 } // namespace
 
@@ -71,27 +87,40 @@ Image render_solution(const EmbreeScene& scene, const Solution& solution, const 
         throw InternalError(fmt::format("render_solution: {} vertex radiosities for {} vertices",
                                         solution.vertex_radiosity.size(),
                                         scene.mesh().vertex_count()));
-    const PixelRenderer renderer{scene, solution.vertex_radiosity, make_camera(camera),
-                                 strata_per_axis(camera.samples_per_pixel), ctx.seed};
+    const Vec3f eye(make_camera(camera).eye);
+    const std::vector<Rgb>& vertex_radiosity = solution.vertex_radiosity;
+    // Radiosity B seen along the ray; black for misses and backs of one-sided surfaces.
+    const auto sampler = make_sampler(camera, ctx, [&](const Vec3f& dir) -> Rgb {
+        auto hit = scene.intersect(eye, dir, 0.0f, std::numeric_limits<float>::infinity());
+        if (hit.element < 0)
+            return {};
+        const auto& t = scene.mesh().triangles[std::uint32_t(hit.element)];
+        const Rgb& b0 = vertex_radiosity[t[0]];
+        // Written as offsets from vertex 0 so that a constant field is reproduced exactly.
+        return b0 + (vertex_radiosity[t[1]] - b0) * hit.u + (vertex_radiosity[t[2]] - b0) * hit.v;
+    });
     Image image(camera.width, camera.height);
-    ProgressStage stage(ctx, "render");
     const std::uint64_t rays_before = scene.rays_traced();
-
-    run_in_arena(ctx, [&] {
-        // Row blocks run one after another so that progress is reported from this thread only.
-        const int rows_per_block = std::max(8, 4 * thread_count(ctx));
-        for (int y0 = 0; y0 < image.height; y0 += rows_per_block) {
-            const int y1 = std::min(image.height, y0 + rows_per_block);
-            parallel_for(blocked_range<int>(y0, y1, 1), [&](const blocked_range<int>& rows) {
-                for (int y = rows.begin(); y != rows.end(); ++y)
-                    for (int x = 0; x < image.width; ++x)
-                        image.at(x, y) = renderer.pixel(x, y);
-            });
-            stage.update(double(y1) / image.height);
-        }
+    render_rows(image, ctx, "render", [&](int x, int y) {
+        const RgbD b = sampler.mean(x, y);
+        return Rgb{float(b.r * k_inv_pi), float(b.g * k_inv_pi), float(b.b * k_inv_pi)};
     });
     ctx.debug("render: {}x{} pixels, {} samples each, {} rays", image.width, image.height,
-              renderer.strata * renderer.strata, scene.rays_traced() - rays_before);
+              sampler.strata * sampler.strata, scene.rays_traced() - rays_before);
+    return image;
+}
+
+Image render_hits(const EmbreeScene& scene, const Camera& camera, const HitShader& shade,
+                  const Context& ctx) {
+    const Vec3f eye(make_camera(camera).eye);
+    const auto sampler = make_sampler(camera, ctx, [&](const Vec3f& dir) -> Rgb {
+        return shade(scene.intersect(eye, dir, 0.0f, std::numeric_limits<float>::infinity()));
+    });
+    Image image(camera.width, camera.height);
+    render_rows(image, ctx, "preview", [&](int x, int y) {
+        const RgbD v = sampler.mean(x, y);
+        return Rgb{float(v.r), float(v.g), float(v.b)};
+    });
     return image;
 }
 

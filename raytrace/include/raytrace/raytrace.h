@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include "core/context.h"
@@ -67,6 +68,16 @@ private:
 ///        Returns linear radiance, W/(sr·m²).
 Image render_solution(const EmbreeScene& scene, const Solution& solution, const Camera& camera,
                       const Context& ctx);
+
+/// \brief The radiance (W/(sr·m²)) a camera ray carries back from what it hit (element < 0:
+///        nothing). Called from several threads at once.
+using HitShader = std::function<Rgb(const EmbreeScene::Hit& hit)>;
+
+/// \brief Renders the camera view with the radiance \p shade gives each primary hit: the
+///        pinhole, stratified samples and box filter of render_solution(). Bitwise identical
+///        for any thread count. Returns linear radiance, W/(sr·m²).
+Image render_hits(const EmbreeScene& scene, const Camera& camera, const HitShader& shade,
+                  const Context& ctx);
 
 /// \brief How `penumbra render` finds the light a diffuse surface reflects (issue #28).
 enum class GatherMode {

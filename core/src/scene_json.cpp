@@ -1125,6 +1125,7 @@ SceneSpec parse_scene_json(const std::string& text, const std::string& file_name
         spec.scene.name = root.child("name").string();
     spec.metres_per_unit = parse_units(root);
     const Vec3 up = parse_up(root);
+    spec.scene.up = up;
     parse_surfaces(root, spec);
     parse_settings(root, up, spec);
     parse_grids(root, up, spec);

@@ -219,6 +219,7 @@ struct LightmapSettings {
 struct Scene {
     std::string name;
     std::string file; ///< the scene file, for messages
+    Vec3 up{0, 0, 1}; ///< unit: the scene's up direction (key `up`); exports turn it to +Y
     std::vector<Material> materials;
     std::vector<Polygon> polygons;
     std::vector<PointLight> point_lights;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Penumbra set-up for a fresh Debian 12 machine: installs every dependency from Debian's
-# packages, then configures and builds Release into build/.
+# packages and client/'s npm packages (npm ci), then configures and builds Release into build/.
 #
 #   scripts/setup.sh            install + build
 #   scripts/setup.sh --deps     install only
@@ -25,6 +25,8 @@ PACKAGES=(
     libspdlog-dev libfmt-dev
     libpng-dev
     libstb-dev
+    libtinygltf-dev
+    nodejs
     libgtest-dev libgmock-dev
     libbenchmark-dev
     xvfb xauth
@@ -52,6 +54,18 @@ install_deps() {
         "${PACKAGES[@]}" >/dev/null
 }
 
+# client/'s npm packages (the glTF validator), pinned by client/package-lock.json. Debian's
+# nodejs comes without npm (its own package); NodeSource's nodejs carries it.
+install_npm_packages() {
+    if ! command -v npm >/dev/null; then
+        local sudo=""
+        [ "$(id -u)" -eq 0 ] || sudo="sudo"
+        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends npm \
+            >/dev/null
+    fi
+    (cd client && npm ci --no-audit --no-fund)
+}
+
 build() {
     local dir="${BUILD_DIR:-build}"
     local jobs="${JOBS:-$(nproc)}"
@@ -60,8 +74,8 @@ build() {
 }
 
 case "${1:-all}" in
-    --deps) install_deps ;;
+    --deps) install_deps; install_npm_packages ;;
     --build) build ;;
-    all) install_deps; build ;;
+    all) install_deps; install_npm_packages; build ;;
     *) echo "usage: scripts/setup.sh [--deps|--build]" >&2; exit 2 ;;
 esac

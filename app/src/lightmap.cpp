@@ -4,8 +4,10 @@
 #include "app/lightmap.h"
 
 #include "lightmap_fill.h"
+#include "lightmap_preview.h"
 
 #include <chrono>
+#include <memory>
 #include <utility>
 
 #include "lightmap/texels.h"
@@ -56,15 +58,21 @@ void fill_lightmaps(const Scene& scene, const BakeResult& bake, LightmapResult& 
     r.times.push_back({"bake", bake_seconds});
     r.atlases.clear();
     r.counts = {};
+    // One Embree scene for the fill and the preview; its build counts in the fill's time.
+    std::unique_ptr<raytrace::EmbreeScene> rt;
     timed(r.times, "fill", [&] {
-        const raytrace::EmbreeScene rt(bake.mesh);
+        rt = std::make_unique<raytrace::EmbreeScene>(bake.mesh);
         const RadiosityMesh& sources = bake.input_mesh ? *bake.input_mesh : bake.mesh;
         for (const lightmap::AtlasTexels& atlas : r.texels)
-            r.atlases.push_back(fill_atlas(scene, bake.solution, rt, sources, r.charts, r.layout,
+            r.atlases.push_back(fill_atlas(scene, bake.solution, *rt, sources, r.charts, r.layout,
                                            atlas, ctx, r.counts));
-        r.rays = rt.rays_traced();
+        r.rays = rt->rays_traced();
         return 0;
     });
+    r.preview.reset();
+    if (scene.camera)
+        r.preview =
+            timed(r.times, "preview", [&] { return render_lightmap_preview(scene, *rt, r, ctx); });
 }
 
 LightmapResult bake_lightmaps(const Scene& scene, const LightmapOptions& options,

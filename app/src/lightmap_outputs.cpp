@@ -1,5 +1,7 @@
-// The files of `penumbra lightmap`: per atlas lightmap_N.exr (linear irradiance) and
-// lightmap_N.png (preview), and lightmaps.json, the manifest an engine's importer reads.
+// The files of `penumbra lightmap`: per atlas lightmap_N.exr (linear irradiance),
+// lightmap_N.png (MOZ_lightmap's lux / intensity, lightmap_gltf.h) and lightmap_N_preview.png
+// (tone-mapped for a look); scene.gltf + scene.bin; preview.exr/.png (the camera's view from
+// the atlases); and lightmaps.json, the manifest an engine's importer reads.
 
 #include <filesystem>
 #include <set>
@@ -11,6 +13,7 @@
 #include "app/lightmap.h"
 #include "core/error.h"
 #include "core/files.h"
+#include "lightmap_gltf.h"
 
 namespace penumbra::app {
 
@@ -20,6 +23,20 @@ namespace fs = std::filesystem;
 
 std::string atlas_file(std::size_t atlas, const char* extension) {
     return fmt::format("lightmap_{}.{}", atlas, extension);
+}
+
+std::string atlas_preview_file(std::size_t atlas) {
+    return fmt::format("lightmap_{}_preview.png", atlas);
+}
+
+std::vector<std::string> atlas_files(std::size_t atlas) {
+    return {atlas_file(atlas, "exr"), atlas_file(atlas, "png"), atlas_preview_file(atlas)};
+}
+
+// The exposure of preview.png: the camera's, else automatic (as render.png's).
+double camera_exposure(const Scene& scene, const Image& preview) {
+    return scene.camera && scene.camera->exposure > 0 ? scene.camera->exposure
+                                                      : auto_exposure(preview);
 }
 
 const char* kind_name(lightmap::ChartKind kind) {
@@ -78,7 +95,8 @@ nlohmann::json polygons_json(const Scene& scene, const LightmapResult& r) {
 }
 
 std::string manifest_json(const Scene& scene, const LightmapOptions& options,
-                          const LightmapResult& r, double exposure) {
+                          const LightmapResult& r, double exposure,
+                          const std::vector<double>& intensities) {
     nlohmann::json j;
     j["scene"] = scene.name;
     j["scene_file"] = scene.file;
@@ -97,9 +115,18 @@ std::string manifest_json(const Scene& scene, const LightmapOptions& options,
     for (std::size_t a = 0; a < r.atlases.size(); ++a)
         atlases.push_back({{"exr", atlas_file(a, "exr")},
                            {"png", atlas_file(a, "png")},
+                           {"png_encoding", "sRGB(179 lm/W x irradiance / intensity), 8 bits"},
+                           {"intensity", intensities[a]},
+                           {"preview_png", atlas_preview_file(a)},
                            {"coverage", r.layout.coverage[a]},
                            {"preview_exposure", exposure}});
     j["atlases"] = atlases;
+    j["gltf"] = {{"file", "scene.gltf"}, {"buffer", "scene.bin"}, {"up", "+y"}, {"units", "m"}};
+    if (r.preview)
+        j["preview"] = {{"exr", "preview.exr"},
+                        {"png", "preview.png"},
+                        {"quantity", "radiance (rho E + emission) / pi, W/(sr m2)"},
+                        {"png_exposure", camera_exposure(scene, *r.preview)}};
     j["polygons"] = polygons_json(scene, r);
     nlohmann::json charts = nlohmann::json::array();
     for (std::size_t c = 0; c < r.charts.charts.size(); ++c)
@@ -121,13 +148,27 @@ std::string manifest_json(const Scene& scene, const LightmapOptions& options,
 void remove_atlas_files_from(const std::string& dir, std::size_t first) {
     for (std::size_t a = first;; ++a) {
         bool any = false;
-        for (const char* extension : {"exr", "png"}) {
+        for (const std::string& name : atlas_files(a)) {
             std::error_code ec;
-            any |= fs::remove(fs::path(dir) / atlas_file(a, extension), ec);
+            any |= fs::remove(fs::path(dir) / name, ec);
         }
         if (!any)
             return;
     }
+}
+
+// preview.exr and preview.png, or neither (an earlier run's removed) without a camera.
+void write_preview(const std::string& dir, const Scene& scene,
+                   const std::optional<Image>& preview) {
+    if (!preview) {
+        for (const char* name : {"preview.exr", "preview.png"}) {
+            std::error_code ec;
+            fs::remove(fs::path(dir) / name, ec);
+        }
+        return;
+    }
+    write_exr((fs::path(dir) / "preview.exr").string(), *preview);
+    write_png((fs::path(dir) / "preview.png").string(), *preview, camera_exposure(scene, *preview));
 }
 
 } // namespace
@@ -138,19 +179,24 @@ void write_lightmaps(const std::string& dir, const Scene& scene, const LightmapO
     fs::create_directories(dir, ec);
     if (ec)
         throw ConfigError(fmt::format("cannot create output folder '{}': {}", dir, ec.message()));
-    std::vector<std::string> names{"lightmaps.json"};
+    std::vector<std::string> names{"lightmaps.json", "scene.gltf", "scene.bin", "preview.exr",
+                                   "preview.png"};
     for (std::size_t a = 0; a < result.atlases.size(); ++a)
-        for (const char* extension : {"exr", "png"})
-            names.push_back(atlas_file(a, extension));
+        for (const std::string& name : atlas_files(a))
+            names.push_back(name);
     remove_stale_temp_files(dir, names);
     const double exposure = preview_exposure(result.atlases);
     for (std::size_t a = 0; a < result.atlases.size(); ++a) {
         write_exr((fs::path(dir) / atlas_file(a, "exr")).string(), result.atlases[a], options.exr);
-        write_png((fs::path(dir) / atlas_file(a, "png")).string(), result.atlases[a], exposure);
+        write_png((fs::path(dir) / atlas_preview_file(a)).string(), result.atlases[a], exposure);
     }
+    const std::vector<double> intensities = lightmap_intensities(result.atlases);
+    write_moz_lightmaps(dir, result.atlases, intensities);
     remove_atlas_files_from(dir, result.atlases.size());
+    write_lightmap_gltf(dir, scene, result, intensities);
+    write_preview(dir, scene, result.preview);
     write_text_file((fs::path(dir) / "lightmaps.json").string(),
-                    manifest_json(scene, options, result, exposure));
+                    manifest_json(scene, options, result, exposure, intensities));
 }
 
 } // namespace penumbra::app

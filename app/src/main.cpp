@@ -459,7 +459,8 @@ int main(int argc, char** argv) {
     LightmapFlags lightmap;
     auto* lightmap_cmd = cli.add_subcommand(
         "lightmap", "mesh and solve a scene, then bake its lightmaps: per atlas lightmap_N.exr "
-                    "(irradiance, W/m²) and lightmap_N.png, and lightmaps.json");
+                    "(irradiance, W/m²) and lightmap_N.png; scene.gltf (MOZ_lightmap), "
+                    "preview.exr/.png and lightmaps.json");
     add_solve_flags(*lightmap_cmd, lightmap.scene);
     lightmap_cmd
         ->add_option("--texels-per-metre", lightmap.texels_per_metre,

@@ -46,9 +46,11 @@ TEST_F(LightmapCli, WritesTheAtlasesAndTheManifest) {
     const test::RunResult r = test::run_cli(command("--texels-per-metre 16 --atlas 64 --float"));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const fs::path out = dir_ / "out";
-    for (const char* f : {"lightmap_0.exr", "lightmap_0.png", "lightmaps.json"})
+    for (const char* f : {"lightmap_0.exr", "lightmap_0.png", "lightmap_0_preview.png",
+                          "scene.gltf", "scene.bin", "lightmaps.json"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     EXPECT_FALSE(fs::exists(out / "lightmap_1.exr"));
+    EXPECT_FALSE(fs::exists(out / "preview.exr")); // the scene has no camera
     for (const auto& entry : fs::directory_iterator(out))
         EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos);
     const auto manifest = nlohmann::json::parse(std::ifstream(out / "lightmaps.json"));

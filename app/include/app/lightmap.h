@@ -1,10 +1,12 @@
 #pragma once
 // `penumbra lightmap` (issue #29): the bake pipeline without render, then the scene's charts
 // packed into atlases and every covered texel filled with the irradiance the solution and the
-// sources give its footprint; written as linear EXR, tone-mapped PNG and a JSON manifest.
+// sources give its footprint; written as linear EXR, PNG, a glTF copy of the scene with the
+// lightmaps on TEXCOORD_1 (MOZ_lightmap), the camera's preview and a JSON manifest.
 // docs/lightmaps.md describes the method.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +41,9 @@ struct LightmapResult {
     lightmap::AtlasLayout layout;
     std::vector<lightmap::AtlasTexels> texels; ///< per atlas, its covered texels
     std::vector<Image> atlases; ///< irradiance, W/m², linear RGB, layout.size² each
+    /// The scene camera's view shaded only from the atlases (radiance W/(sr·m²)), as an engine
+    /// shows the bake; none without a camera (docs/lightmaps.md, "Preview").
+    std::optional<Image> preview;
     LightmapCounts counts;
     int samples_per_texel = 0;    ///< footprint samples of a texel that lies wholly on its chart
     std::vector<StageTime> times; ///< charts, packing, texels, bake (all its stages), fill
@@ -55,7 +60,8 @@ LightmapResult plan_lightmaps(const Scene& scene, const LightmapOptions& options
 BakeOptions lightmap_bake_options();
 
 /// \brief Fills the atlases of \p result (from plan_lightmaps) from \p bake, a bake of
-///        \p scene. Deterministic for any thread count.
+///        \p scene, and renders its preview when the scene has a camera. Deterministic for
+///        any thread count.
 void fill_lightmaps(const Scene& scene, const BakeResult& bake, LightmapResult& result,
                     const Context& ctx);
 
@@ -63,10 +69,13 @@ void fill_lightmaps(const Scene& scene, const BakeResult& bake, LightmapResult& 
 LightmapResult bake_lightmaps(const Scene& scene, const LightmapOptions& options,
                               const Context& ctx);
 
-/// \brief Writes lightmap_N.exr (irradiance W/m², options.exr pixels), lightmap_N.png (an
-///        8-bit sRGB preview at one automatic exposure for all atlases) per atlas and
-///        lightmaps.json (the manifest) into \p dir, each atomically; removes the lightmap_N
-///        files of an earlier run with more atlases. Throws ExternalError/ConfigError.
+/// \brief Writes into \p dir, each file atomically: per atlas lightmap_N.exr (irradiance W/m²,
+///        options.exr pixels), lightmap_N.png (MOZ_lightmap's encoding: 8-bit sRGB of
+///        179 lm/W × irradiance / the atlas's intensity) and lightmap_N_preview.png (8-bit sRGB
+///        at one automatic exposure for all atlases); scene.bin + scene.gltf (the glTF copy);
+///        preview.exr + preview.png when result.preview is set; lightmaps.json (the manifest).
+///        Removes the lightmap_N files of an earlier run with more atlases, and its preview
+///        files when there is no preview. Throws ExternalError/ConfigError.
 void write_lightmaps(const std::string& dir, const Scene& scene, const LightmapOptions& options,
                      const LightmapResult& result);
 

@@ -112,7 +112,7 @@ TEST(LightmapLeak, NothingReachesTheFloorBeyondAWall) {
 }
 
 // ---- The Cornell box: finite values ≥ 0 in every texel, padding included, and the same
-// bits on 1 and 2 threads. ----
+// bits (atlases and preview) on 1 and 2 threads. ----
 
 TEST(LightmapCornell, FiniteNonNegativeAndTheSameForAnyThreadCount) {
     const Scene scene = test::cornell_box(0.15);
@@ -134,6 +134,12 @@ TEST(LightmapCornell, FiniteNonNegativeAndTheSameForAnyThreadCount) {
             << "atlas " << a << " differs between 1 and 2 threads";
     }
     EXPECT_GT(lit, 3 * one.counts.texels / 2);
+    // The preview of the box's camera, too.
+    ASSERT_TRUE(one.preview && two.preview);
+    ASSERT_EQ(one.preview->pixels.size(), two.preview->pixels.size());
+    EXPECT_EQ(std::memcmp(one.preview->pixels.data(), two.preview->pixels.data(),
+                          one.preview->pixels.size() * sizeof(Rgb)),
+              0);
 }
 
 } // namespace

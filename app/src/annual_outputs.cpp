@@ -7,7 +7,6 @@
 #include <bit>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 #include <span>
 
 #include <fmt/format.h>
@@ -181,11 +180,9 @@ void write_hourly(const AnnualResults& r, const std::string& dir) {
     const Eigen::MatrixXf by_sensor = r.illuminance_lx.transpose();
     const std::string path = (fs::path(dir) / "hourly_illuminance.f32").string();
     write_atomically(path, [&](const std::string& temp) {
-        std::ofstream out(temp, std::ios::binary);
-        out.write(reinterpret_cast<const char*>(by_sensor.data()),
-                  std::streamsize(by_sensor.size() * Eigen::Index(sizeof(float))));
-        if (!out.flush())
-            throw ExternalError(fmt::format("cannot write {}", path));
+        FileWriter out(temp, path);
+        out.write(by_sensor.data(), std::size_t(by_sensor.size()) * sizeof(float));
+        out.close();
     });
     write_text_file((fs::path(dir) / "hourly_illuminance.json").string(),
                     hourly_description(r).dump() + "\n");

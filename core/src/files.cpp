@@ -79,30 +79,6 @@ void check_replaceable(const std::string& path) {
         throw ConfigError(fmt::format("'{}' is not a regular file", path));
 }
 
-/// Writes all of \p bytes to a new file \p temp with POSIX calls, so that a failure's errno is
-/// taken from the call that failed ("No space left on device").
-void write_bytes(const std::string& temp, const std::string& path, const std::string& bytes) {
-    const auto fail = [&path](int error) {
-        throw ExternalError(fmt::format("cannot write '{}': {}", path, std::strerror(error)));
-    };
-    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd < 0)
-        fail(errno);
-    for (std::size_t at = 0; at < bytes.size();) {
-        const ssize_t n = ::write(fd, bytes.data() + at, bytes.size() - at);
-        if (n < 0 && errno == EINTR)
-            continue;
-        if (n <= 0) {
-            const int error = n < 0 ? errno : EIO;
-            ::close(fd);
-            fail(error);
-        }
-        at += std::size_t(n);
-    }
-    if (::close(fd) != 0)
-        fail(errno);
-}
-
 /// The PID of a temporary name ".NAME.tmpPID" for \p name, or 0 if \p file is not one.
 pid_t temp_pid(const std::string& file, const std::string& name) {
     const std::string prefix = "." + name + k_temp_infix;
@@ -141,8 +117,93 @@ void write_atomically(const std::string& path,
     }
 }
 
-void write_text_file(const std::string& path, const std::string& text) {
-    write_atomically(path, [&](const std::string& temp) { write_bytes(temp, path, text); });
+void write_text_file(const std::string& path, std::string_view text) {
+    write_atomically(path, [&](const std::string& temp) {
+        FileWriter file(temp, path);
+        file.write(text.data(), text.size());
+        file.close();
+    });
+}
+
+namespace {
+// Gathers small pieces (VTK's XML text, the state file's counts) into few system calls;
+// blocks at least this large go out directly.
+constexpr std::size_t k_file_buffer_bytes = std::size_t(1) << 20;
+} // namespace
+
+FileWriter::FileWriter(const std::string& temp_path, std::string name) : name_(std::move(name)) {
+    fd_ = ::open(temp_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd_ < 0)
+        fail(errno);
+    buffer_.reserve(k_file_buffer_bytes);
+}
+
+FileWriter::~FileWriter() {
+    if (fd_ >= 0)
+        ::close(fd_);
+}
+
+void FileWriter::write(const void* data, std::size_t size) {
+    if (error_)
+        rethrow();
+    const char* bytes = static_cast<const char*>(data);
+    if (buffer_.size() + size > k_file_buffer_bytes)
+        flush();
+    if (size < k_file_buffer_bytes) {
+        buffer_.append(bytes, size);
+        return;
+    }
+    // A large block goes out directly, not through the buffer.
+    for (std::size_t at = 0; at < size;) {
+        const ssize_t n = ::write(fd_, bytes + at, size - at);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            fail(n < 0 ? errno : EIO);
+        at += std::size_t(n);
+        file_position_ += std::uint64_t(n);
+    }
+}
+
+void FileWriter::flush() {
+    for (std::size_t at = 0; at < buffer_.size();) {
+        const ssize_t n = ::write(fd_, buffer_.data() + at, buffer_.size() - at);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            fail(n < 0 ? errno : EIO);
+        at += std::size_t(n);
+    }
+    file_position_ += buffer_.size();
+    buffer_.clear();
+}
+
+void FileWriter::seek(std::uint64_t position) {
+    if (error_)
+        rethrow();
+    flush();
+    if (::lseek(fd_, off_t(position), SEEK_SET) < 0)
+        fail(errno);
+    file_position_ = position;
+}
+
+void FileWriter::close() {
+    if (error_)
+        rethrow();
+    flush();
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0)
+        fail(errno);
+}
+
+void FileWriter::rethrow() const {
+    throw ExternalError(fmt::format("cannot write '{}': {}", name_, std::strerror(error_)));
+}
+
+void FileWriter::fail(int error) {
+    error_ = error;
+    rethrow();
 }
 
 void remove_temp_files_on_signal() noexcept {

@@ -12,6 +12,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <fmt/format.h>
@@ -21,6 +22,8 @@
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
+#include <memory>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -69,6 +72,20 @@ Imf::FrameBuffer half_frame_buffer(const Imath::half* halves, const Imath::Box2i
     return frame;
 }
 
+/// OpenEXR's output through a FileWriter, so that a failed write reports the system's reason;
+/// OpenEXR's own stream says only "Error writing" when the disk is full.
+class ExrOutput final : public Imf::OStream {
+public:
+    explicit ExrOutput(FileWriter& file, const std::string& path)
+        : Imf::OStream(path.c_str()), file_(file) {}
+    void write(const char c[], int n) override { file_.write(c, std::size_t(n)); }
+    std::uint64_t tellp() override { return file_.position(); }
+    void seekp(std::uint64_t position) override { file_.seek(position); }
+
+private:
+    FileWriter& file_;
+};
+
 std::uint8_t encode_srgb(double linear) {
     if (!(linear > 0))
         return 0; // also NaN
@@ -83,13 +100,15 @@ std::uint8_t encode_srgb(double linear) {
 void write_exr(const std::string& path, const Image& image, ExrPixels pixels) {
     check_image(image, "write_exr", path);
     write_atomically(path, [&](const std::string& temp) {
+        FileWriter output(temp, path);
         try {
             Imf::Header header(image.width, image.height);
             header.compression() = Imf::ZIP_COMPRESSION;
             const bool half = pixels == ExrPixels::half;
             for (const char* name : {"R", "G", "B"})
                 header.channels().insert(name, Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
-            Imf::OutputFile file(temp.c_str(), header);
+            ExrOutput stream(output, path);
+            Imf::OutputFile file(stream, header);
             // Writing converts no pixel types: half channels get a frame buffer of halves.
             const std::vector<Imath::half> halves =
                 half ? to_half(image) : std::vector<Imath::half>{};
@@ -97,8 +116,12 @@ void write_exr(const std::string& path, const Image& image, ExrPixels pixels) {
                                      : rgb_frame_buffer(image.pixels.data(), header.dataWindow()));
             file.writePixels(image.height);
         } catch (const std::exception& e) {
+            if (output.error())
+                output.rethrow();
             throw ExternalError(fmt::format("cannot write OpenEXR file '{}': {}", path, e.what()));
         }
+        // The file's destructor wrote the line offsets and swallows any error: close() reports it.
+        output.close();
     });
 }
 
@@ -150,18 +173,23 @@ void write_png_rgb8(const std::string& path, int width, int height,
     if (width <= 0 || height <= 0 || rgb.size() != 3 * std::size_t(width) * std::size_t(height))
         throw InternalError(fmt::format("write_png_rgb8('{}'): {} bytes for {}x{} pixels", path,
                                         rgb.size(), width, height));
-    write_atomically(path, [&](const std::string& temp) {
-        png_image png{};
-        png.version = PNG_IMAGE_VERSION;
-        png.width = png_uint_32(width);
-        png.height = png_uint_32(height);
-        png.format = PNG_FORMAT_RGB;
-        const bool ok = png_image_write_to_file(&png, temp.c_str(), 0, rgb.data(), 0, nullptr);
-        const std::string message = png.message;
-        png_image_free(&png);
-        if (!ok)
-            throw ExternalError(fmt::format("cannot write PNG file '{}': {}", path, message));
-    });
+    // Encoded in memory, then written by write_text_file: libpng's own file output reports a
+    // full disk as "Write Error", without the reason.
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    png.width = png_uint_32(width);
+    png.height = png_uint_32(height);
+    png.format = PNG_FORMAT_RGB;
+    png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
+    // Uninitialised: only the encoded bytes are touched, so the bound costs address space only.
+    const std::unique_ptr<char[]> encoded(new char[size]);
+    const bool ok =
+        png_image_write_to_memory(&png, encoded.get(), &size, 0, rgb.data(), 0, nullptr);
+    const std::string message = png.message;
+    png_image_free(&png);
+    if (!ok)
+        throw ExternalError(fmt::format("cannot write PNG file '{}': {}", path, message));
+    write_text_file(path, std::string_view(encoded.get(), size));
 }
 
 } // namespace penumbra

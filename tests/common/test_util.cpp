@@ -4,6 +4,8 @@
 
 #include <array>
 #include <atomic>
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 
@@ -11,6 +13,7 @@
 
 #include "core/error.h"
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -70,6 +73,90 @@ RunResult run_cli(const std::string& args) {
     const int status = ::pclose(pipe);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
+}
+
+namespace {
+
+/// What the child wrote to \p fd until it closed it.
+std::string read_all(int fd) {
+    std::string text;
+    std::array<char, 4096> buf{};
+    for (ssize_t n; (n = ::read(fd, buf.data(), buf.size())) != 0;) {
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0)
+            break;
+        text.append(buf.data(), std::size_t(n));
+    }
+    return text;
+}
+
+/// In a child: file sizes limited to \p max_bytes, and a write past it fails with EFBIG
+/// instead of killing the process.
+void limit_file_size(std::uint64_t max_bytes) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{rlim_t(max_bytes), rlim_t(max_bytes)};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+}
+
+} // namespace
+
+RunResult run_cli_with_file_limit(const std::vector<std::string>& args, std::uint64_t max_bytes) {
+    int err[2];
+    RunResult r;
+    if (::pipe(err) != 0)
+        return r;
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::dup2(err[1], STDERR_FILENO);
+        ::close(err[0]);
+        ::close(err[1]);
+        std::freopen("/dev/null", "w", stdout);
+        limit_file_size(max_bytes);
+        std::vector<char*> argv{const_cast<char*>(PENUMBRA_CLI)};
+        for (const std::string& a : args)
+            argv.push_back(const_cast<char*>(a.c_str()));
+        argv.push_back(nullptr);
+        ::execv(PENUMBRA_CLI, argv.data());
+        ::_exit(127);
+    }
+    ::close(err[1]);
+    r.err = read_all(err[0]);
+    ::close(err[0]);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+std::string external_error_with_file_limit(std::uint64_t max_bytes,
+                                           const std::function<void()>& write) {
+    int out[2];
+    if (::pipe(out) != 0)
+        return "other: no pipe";
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::close(out[0]);
+        limit_file_size(max_bytes);
+        std::string message;
+        try {
+            write();
+        } catch (const ExternalError& e) {
+            message = e.what();
+        } catch (const std::exception& e) {
+            message = std::string("other: ") + e.what();
+        }
+        [[maybe_unused]] const ssize_t n = ::write(out[1], message.data(), message.size());
+        ::_exit(0);
+    }
+    ::close(out[1]);
+    std::string message = read_all(out[0]);
+    ::close(out[0]);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        return "other: the child did not exit normally";
+    return message;
 }
 
 std::uint32_t add_material(Scene& scene, const std::string& name, Rgb reflectance, Rgb emission,

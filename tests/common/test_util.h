@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the test suites.
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -56,6 +57,17 @@ struct RunResult {
 
 /// Runs the built penumbra CLI with \p args (standard output discarded).
 RunResult run_cli(const std::string& args);
+
+/// \brief Runs the built penumbra CLI with \p args (one per word, standard output discarded)
+///        in a process whose files may not grow past \p max_bytes: RLIMIT_FSIZE with SIGXFSZ
+///        ignored, so that write(2) fails with EFBIG as a full disk fails with ENOSPC.
+RunResult run_cli_with_file_limit(const std::vector<std::string>& args, std::uint64_t max_bytes);
+
+/// \brief Runs \p write in a child process under the file size limit of
+///        run_cli_with_file_limit(). Returns the message of the ExternalError it threw; ""
+///        if it returned normally; "other: …" for any other exception or ending.
+std::string external_error_with_file_limit(std::uint64_t max_bytes,
+                                           const std::function<void()>& write);
 
 /// Adds a material; returns its index.
 std::uint32_t add_material(Scene& scene, const std::string& name, Rgb reflectance,

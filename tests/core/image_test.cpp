@@ -6,10 +6,12 @@
 #include "core/error.h"
 #include "core/files.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <png.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -95,6 +97,34 @@ TEST(Exr, ErrorsNameThePath) {
     EXPECT_THROW(read_exr(dir + "/bad.exr"), ExternalError);
     EXPECT_THROW(write_exr(dir + "/no/such/folder/a.exr", test_pattern(2, 2)), ExternalError);
     EXPECT_THROW(write_exr(dir + "/empty.exr", Image()), InternalError);
+}
+
+// Issue #32: a full disk (here a file size limit, EFBIG) said "cannot write" or OpenEXR's
+// "Error writing"; the message now gives the system's reason, and nothing is left behind.
+TEST(Exr, FailedWriteSaysWhyAndLeavesNothing) {
+    const std::string dir = test::temp_dir("exr_efbig");
+    for (ExrPixels pixels : {ExrPixels::float32, ExrPixels::half}) {
+        const std::string path = dir + "/image.exr";
+        const std::string message = test::external_error_with_file_limit(
+            1000, [&] { write_exr(path, test_pattern(64, 64), pixels); });
+        EXPECT_NE(message.find(fmt::format("'{}': {}", path, std::strerror(EFBIG))),
+                  std::string::npos)
+            << message;
+        EXPECT_EQ(files_in(dir), 0u);
+    }
+}
+
+TEST(Png, FailedWriteSaysWhyAndLeavesNothing) {
+    const std::string dir = test::temp_dir("png_efbig");
+    const std::string path = dir + "/image.png";
+    write_png(path, test_pattern(64, 64), 1.0);
+    const std::uintmax_t size = fs::file_size(path);
+    fs::remove(path);
+    const std::string message = test::external_error_with_file_limit(
+        size / 2, [&] { write_png(path, test_pattern(64, 64), 1.0); });
+    EXPECT_NE(message.find(fmt::format("'{}': {}", path, std::strerror(EFBIG))), std::string::npos)
+        << message;
+    EXPECT_EQ(files_in(dir), 0u);
 }
 
 TEST(Png, WritesEightBitRgbOfTheRightSize) {

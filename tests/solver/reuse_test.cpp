@@ -2,7 +2,9 @@
 // solve (solver_state.bin), takes the new reflectances, re-runs the oracle and iterates; it
 // must equal a full solve of the changed scene.
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -12,6 +14,7 @@
 #include "common/test_util.h"
 #include "core/error.h"
 #include "core/files.h"
+#include "core/rng.h"
 #include "core/scene_io.h"
 #include "state/solver_state.h"
 
@@ -157,6 +160,31 @@ TEST(Reuse, StateFileRefusesEveryCorruptedByte) {
     EXPECT_EQ(read->radiosity, first.solver_state->radiosity);
     EXPECT_EQ(read->hierarchy.area, first.solver_state->hierarchy.area);
     EXPECT_EQ(read->links.size(), first.solver_state->links.size());
+}
+
+// The state file is written and read as a stream, its checksum computed piece by piece (a
+// second copy of the links was held to hash them). Its last word must still be the checksum of
+// the bytes before it as one piece, computed here on its own (core/rng.h's mix64 over 64-bit
+// words, from the byte count), so that files of earlier builds stay readable.
+TEST(Reuse, StreamedChecksumIsTheChecksumOfTheWholeFile) {
+    const Scene scene = coarse_cornell();
+    const app::BakeResult first = bake(scene);
+    const std::string dir = test::temp_dir("reuse_checksum");
+    app::write_outputs(dir, scene, first);
+    const std::string bytes = read_text_file(dir + "/" + app::k_solver_state_file);
+    ASSERT_GT(bytes.size(), 16u);
+    const std::size_t payload = bytes.size() - sizeof(std::uint64_t);
+    std::uint64_t h = hash_words({payload});
+    for (std::size_t at = 0; at < payload; at += 8) {
+        std::uint64_t word = 0;
+        std::memcpy(&word, bytes.data() + at, std::min<std::size_t>(8, payload - at));
+        h = mix64(h ^ mix64(word + 0x632be59bd9b4e019ULL));
+    }
+    std::uint64_t stored = 0;
+    std::memcpy(&stored, bytes.data() + payload, sizeof(stored));
+    EXPECT_EQ(stored, h);
+    EXPECT_EQ(solver::state_checksum({bytes.data(), payload}), h);
+    EXPECT_EQ(bytes.compare(0, 8, "PNBRHRS9"), 0);
 }
 
 } // namespace

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/files.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
@@ -20,6 +21,8 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -262,6 +265,19 @@ TEST(WriteVtu, Errors) {
     s.radiosity.pop_back();
     EXPECT_THROW(write_vtu(dir + "/mesh.vtu", Scene(), mesh, s), InternalError);
     EXPECT_FALSE(fs::exists(dir + "/mesh.vtu"));
+}
+
+// Issue #32: a full disk gave VTK's pipeline errors; the message now names the file and the
+// system's reason (here EFBIG from a file size limit), and nothing is left behind.
+TEST(WriteVtu, FailedWriteSaysWhyAndLeavesNothing) {
+    const RadiosityMesh mesh = test_mesh();
+    const Solution s = test_solution(mesh);
+    const std::string dir = test::temp_dir("vtu_efbig");
+    const std::string path = dir + "/mesh.vtu";
+    const std::string message =
+        test::external_error_with_file_limit(300, [&] { write_vtu(path, Scene(), mesh, s); });
+    EXPECT_EQ(message, fmt::format("cannot write '{}': {}", path, std::strerror(EFBIG)));
+    EXPECT_TRUE(fs::is_empty(dir));
 }
 
 TEST(WriteVtu, HierarchyLevel) {

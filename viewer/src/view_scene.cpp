@@ -21,10 +21,12 @@
 #include <vtkProperty.h>
 #include <vtkStringArray.h>
 #include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 #include <vector>
 
 namespace penumbra::viewer {
@@ -302,18 +304,21 @@ void ViewScene::write_png(const std::string& path) {
     grab->SetInput(window_);
     grab->SetInputBufferTypeToRGB();
     grab->ReadFrontBufferOff();
-    write_atomically(path, [&](const std::string& temp) {
-        vtkNew<vtkPNGWriter> writer;
-        vtkNew<ErrorCapture> errors;
-        errors->watch(writer);
-        errors->watch(grab);
-        writer->SetInputConnection(grab->GetOutputPort());
-        writer->SetFileName(temp.c_str());
-        writer->Write();
-        if (!errors->message.empty())
-            throw ExternalError(
-                fmt::format("cannot write PNG file '{}': {}", path, errors->message));
-    });
+    // Encoded in memory, then written by write_text_file: VTK's own file output does not say
+    // why a write failed.
+    vtkNew<vtkPNGWriter> writer;
+    vtkNew<ErrorCapture> errors;
+    errors->watch(writer);
+    errors->watch(grab);
+    writer->SetInputConnection(grab->GetOutputPort());
+    writer->WriteToMemoryOn();
+    writer->Write();
+    vtkUnsignedCharArray* encoded = writer->GetResult();
+    if (!errors->message.empty() || !encoded)
+        throw ExternalError(fmt::format("cannot write PNG file '{}': {}", path,
+                                        errors->message.empty() ? "no image" : errors->message));
+    write_text_file(path, std::string_view(reinterpret_cast<const char*>(encoded->GetPointer(0)),
+                                           std::size_t(encoded->GetNumberOfValues())));
 }
 
 void ViewScene::pick(int x, int y) {

@@ -101,10 +101,7 @@ void write_grid_arrays_vtp(const std::string& path, const Scene& scene, const Se
     add_scalar<vtkIntArray>(pd, "row", n, [&](std::size_t i) { return points.row[i]; });
     add_scalar<vtkIntArray>(pd, "column", n, [&](std::size_t i) { return points.column[i]; });
     add_units(data, units);
-    write_atomically(path, [&](const std::string& temp) {
-        vtkNew<vtkXMLPolyDataWriter> writer;
-        write_xml(writer, data, temp, path);
-    });
+    write_xml_file<vtkXMLPolyDataWriter>(data, path);
 }
 
 void write_grid_vtp(const std::string& path, const Scene& scene, const SensorGrid& grid,

@@ -199,10 +199,7 @@ void write_vtu(const std::string& path, const Scene& scene, const RadiosityMesh&
                      {"illuminance_lx", "lx"},
                      {"luminance_cd_m2", "cd/m²"}});
 
-    write_atomically(path, [&](const std::string& temp) {
-        vtkNew<vtkXMLUnstructuredGridWriter> writer;
-        write_xml(writer, grid, temp, path);
-    });
+    write_xml_file<vtkXMLUnstructuredGridWriter>(grid, path);
 }
 
 } // namespace penumbra::viewer

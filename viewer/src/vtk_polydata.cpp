@@ -31,10 +31,7 @@ namespace penumbra::viewer {
 namespace {
 
 void write_polydata(const std::string& path, vtkPolyData* data) {
-    write_atomically(path, [&](const std::string& temp) {
-        vtkNew<vtkXMLPolyDataWriter> writer;
-        write_xml(writer, data, temp, path);
-    });
+    write_xml_file<vtkXMLPolyDataWriter>(data, path);
 }
 
 // The `source` value of a discontinuity segment: the polygon's index for an area source, −1

@@ -49,11 +49,43 @@ void add_units(vtkDataObject* data, const std::vector<std::pair<std::string, std
     data->GetFieldData()->AddArray(array);
 }
 
-void write_xml(vtkXMLWriter* writer, vtkDataObject* data, const std::string& temp,
+FileStream::Buffer::int_type FileStream::Buffer::overflow(int_type c) {
+    if (traits_type::eq_int_type(c, traits_type::eof()))
+        return traits_type::not_eof(c);
+    const char byte = traits_type::to_char_type(c);
+    return xsputn(&byte, 1) == 1 ? c : traits_type::eof();
+}
+
+std::streamsize FileStream::Buffer::xsputn(const char* s, std::streamsize n) {
+    try {
+        file_.write(s, std::size_t(n));
+        return n;
+    } catch (const ExternalError&) {
+        return 0; // the stream fails; file_ keeps the reason
+    }
+}
+
+FileStream::Buffer::pos_type
+FileStream::Buffer::seekoff(off_type offset, std::ios_base::seekdir dir, std::ios_base::openmode) {
+    const off_type base = dir == std::ios_base::beg   ? 0
+                          : dir == std::ios_base::cur ? off_type(file_.position())
+                                                      : off_type(-1);
+    if (base < 0 || base + offset < 0)
+        return pos_type(off_type(-1));
+    if (offset == 0 && dir == std::ios_base::cur) // tellp()
+        return pos_type(base);
+    try {
+        file_.seek(std::uint64_t(base + offset));
+        return pos_type(base + offset);
+    } catch (const ExternalError&) {
+        return pos_type(off_type(-1));
+    }
+}
+
+void write_xml(vtkXMLWriter* writer, vtkDataObject* data, FileWriter& file,
                const std::string& path) {
     vtkNew<ErrorCapture> errors;
     errors->watch(writer);
-    writer->SetFileName(temp.c_str());
     writer->SetInputDataObject(data);
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff(); // raw binary, not base64
@@ -61,11 +93,14 @@ void write_xml(vtkXMLWriter* writer, vtkDataObject* data, const std::string& tem
     writer->SetHeaderTypeToUInt64();
     const bool ok = writer->Write() == 1;
     const unsigned long code = writer->GetErrorCode();
-    if (ok && code == vtkErrorCode::NoError && errors->message.empty())
-        return;
-    std::string reason =
-        !errors->message.empty() ? errors->message : vtkErrorCode::GetStringFromErrorCode(code);
-    throw ExternalError(fmt::format("cannot write VTK file '{}': {}", path, reason));
+    if (file.error())
+        file.rethrow();
+    if (!ok || code != vtkErrorCode::NoError || !errors->message.empty()) {
+        const std::string reason =
+            !errors->message.empty() ? errors->message : vtkErrorCode::GetStringFromErrorCode(code);
+        throw ExternalError(fmt::format("cannot write VTK file '{}': {}", path, reason));
+    }
+    file.close();
 }
 
 } // namespace penumbra::viewer

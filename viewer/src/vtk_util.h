@@ -1,7 +1,8 @@
 #pragma once
 // Helpers shared by the VTK writers and the viewer: error capture (VTK reports errors through
-// events, not exceptions), array builders and an XML writer call that throws ExternalError.
+// events, not exceptions), array builders and an XML file writer that throws ExternalError.
 
+#include "core/files.h"
 #include "core/rgb.h"
 
 #include <vtkCommand.h>
@@ -11,6 +12,8 @@
 #include <vtkSmartPointer.h>
 
 #include <cstddef>
+#include <ostream>
+#include <streambuf>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,8 +66,59 @@ void add_scalar(vtkDataSetAttributes* data, const char* name, std::size_t count,
 /// viewer, ParaView users) know each array's unit without a table of names.
 void add_units(vtkDataObject* data, const std::vector<std::pair<std::string, std::string>>& units);
 
-/// Writes \p data with \p writer (binary appended, zlib) to \p temp; errors name \p path.
-void write_xml(vtkXMLWriter* writer, vtkDataObject* data, const std::string& temp,
+/// A std::ostream onto a FileWriter. VTK's writers see only a failed stream when the disk is
+/// full; the FileWriter keeps the system's reason.
+class FileStream final : public std::ostream {
+public:
+    explicit FileStream(FileWriter& file) : std::ostream(&buffer_), buffer_(file) {}
+
+private:
+    class Buffer final : public std::streambuf {
+    public:
+        explicit Buffer(FileWriter& file) : file_(file) {}
+
+    protected:
+        int_type overflow(int_type c) override;
+        std::streamsize xsputn(const char* s, std::streamsize n) override;
+        pos_type seekoff(off_type offset, std::ios_base::seekdir dir,
+                         std::ios_base::openmode) override;
+        pos_type seekpos(pos_type position, std::ios_base::openmode mode) override {
+            return seekoff(off_type(position), std::ios_base::beg, mode);
+        }
+
+    private:
+        FileWriter& file_;
+    };
+    Buffer buffer_;
+};
+
+/// \p Writer (a vtkXMLWriter) writing to a stream of ours instead of a file it opens itself.
+template <typename Writer> class StreamedWriter final : public Writer {
+public:
+    static StreamedWriter* New() {
+        auto* writer = new StreamedWriter;
+        writer->InitializeObjectBase();
+        return writer;
+    }
+    /// VTK writes to a stream it was given (its protected Stream) rather than opening FileName.
+    void set_stream(std::ostream* stream) { this->Stream = stream; }
+};
+
+/// Writes \p data with \p writer (binary appended, zlib) to \p file; errors name \p path and
+/// give the system's reason when a write failed.
+void write_xml(vtkXMLWriter* writer, vtkDataObject* data, FileWriter& file,
                const std::string& path);
+
+/// Writes \p data to the VTK XML file \p path atomically with a writer of type \p Writer
+/// (vtkXMLPolyDataWriter, vtkXMLUnstructuredGridWriter).
+template <typename Writer> void write_xml_file(vtkDataObject* data, const std::string& path) {
+    write_atomically(path, [&](const std::string& temp) {
+        FileWriter file(temp, path);
+        FileStream stream(file);
+        vtkNew<StreamedWriter<Writer>> writer;
+        writer->set_stream(&stream);
+        write_xml(writer, data, file, path);
+    });
+}
 
 } // namespace penumbra::viewer

@@ -10,6 +10,7 @@
 #include <span>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "core/files.h"
@@ -77,25 +78,28 @@ std::string plan_file(const SensorGrid& grid, const AnnualMetric& metric) {
     return fmt::format("annual_{}_{}.png", grid.name, metric.file);
 }
 
-void check_sizes(const AnnualResults& r) {
-    const auto sensors = Eigen::Index(r.scene->sensors.size());
-    const auto hours = Eigen::Index(r.weather->hours.size());
+void check_sizes(const Scene& scene, const AnnualResult& r) {
+    if (r.mesh && (r.mesh->elements.size() != r.mesh->mesh.element_count() ||
+                   r.mesh->mean_illuminance_lx.size() != r.mesh->mesh.element_count()))
+        throw InternalError("write_annual: the mesh's metrics do not fit its elements");
+    const auto sensors = Eigen::Index(scene.sensors.size());
+    const auto hours = Eigen::Index(r.weather.hours.size());
     const auto fits = [&](const Eigen::MatrixXf& m) {
         return m.rows() == sensors && m.cols() == hours;
     };
     if (!fits(r.illuminance_lx) || !fits(r.direct_sun_lx) ||
-        r.sensors.size() != r.scene->sensors.size() || r.grids.size() != r.scene->grids.size() ||
-        r.occupied.size() != r.weather->hours.size())
+        r.sensors.size() != scene.sensors.size() || r.grids.size() != scene.grids.size() ||
+        r.occupied.size() != r.weather.hours.size())
         throw InternalError(fmt::format(
             "write_annual_outputs: {} sensors, {} grids, {} hours but matrices of {} × {} and "
             "{} × {}, {} sensor and {} grid metrics, {} occupancy flags",
-            sensors, r.scene->grids.size(), hours, r.illuminance_lx.rows(), r.illuminance_lx.cols(),
+            sensors, scene.grids.size(), hours, r.illuminance_lx.rows(), r.illuminance_lx.cols(),
             r.direct_sun_lx.rows(), r.direct_sun_lx.cols(), r.sensors.size(), r.grids.size(),
             r.occupied.size()));
 }
 
 /// \p metric at the grid's present points, in lattice order.
-std::vector<double> grid_values(const AnnualResults& r, const SensorGrid& grid,
+std::vector<double> grid_values(const AnnualResult& r, const SensorGrid& grid,
                                 const AnnualMetric& metric) {
     std::vector<double> values;
     for (const auto& sensor : grid.sensors)
@@ -124,34 +128,36 @@ ColourScale metric_scale(const AnnualMetric& metric, const GridStats& stats) {
     return ColourScale::covering(0, metric.unit == "%" ? 100 : stats.max);
 }
 
-void write_grid_files(const AnnualResults& r, std::size_t g, const std::string& dir) {
-    const SensorGrid& grid = r.scene->grids[g];
+void write_grid_files(const Scene& scene, const AnnualResult& r, std::size_t g,
+                      const std::string& dir) {
+    const SensorGrid& grid = scene.grids[g];
     std::vector<viewer::GridPointArray> arrays;
     for (const AnnualMetric& metric : annual_metrics()) {
         std::vector<double> values = grid_values(r, grid, metric);
         const GridStats stats = stats_of(values);
-        const PlanTitle title{
-            fmt::format("{}: {} ({})", grid.name, metric.heading(r.thresholds), metric.unit),
-            plan_statistics_line(metric, r.grids[g], stats)};
+        const PlanTitle title{fmt::format("{}: {} ({})", grid.name,
+                                          metric.heading(r.options.thresholds), metric.unit),
+                              plan_statistics_line(metric, r.grids[g], stats)};
         draw_grid_plan(grid, values, title, metric_scale(metric, stats))
             .write_png((fs::path(dir) / plan_file(grid, metric)).string());
         arrays.push_back({std::string(metric.column), std::string(metric.unit), std::move(values)});
     }
     viewer::write_grid_arrays_vtp((fs::path(dir) / ("annual_" + grid.name + ".vtp")).string(),
-                                  *r.scene, grid, arrays);
+                                  scene, grid, arrays);
 }
 
-void write_heat_map(const AnnualResults& r, std::size_t sensor, const std::string& path) {
+void write_heat_map(const Scene& scene, const AnnualResult& r, std::size_t sensor,
+                    const std::string& path) {
     const Eigen::VectorXf row = r.illuminance_lx.row(Eigen::Index(sensor));
     const PlanTitle title{
-        fmt::format("{}: illuminance (lx) by day and hour", sensor_label(*r.scene, sensor)),
+        fmt::format("{}: illuminance (lx) by day and hour", sensor_label(scene, sensor)),
         fmt::format("max {:.0f} lx  DA {:.1f} %  UDI useful {:.1f} %", row.maxCoeff(),
                     100 * r.sensors[sensor].daylight_autonomy, 100 * r.sensors[sensor].udi_useful)};
-    draw_heat_map(*r.weather, std::span<const float>(row.data(), std::size_t(row.size())), title)
+    draw_heat_map(r.weather, std::span<const float>(row.data(), std::size_t(row.size())), title)
         .write_png(path);
 }
 
-nlohmann::json hourly_description(const AnnualResults& r) {
+nlohmann::json hourly_description(const Scene& scene, const AnnualResult& r) {
     nlohmann::json j;
     j["file"] = "hourly_illuminance.f32";
     j["type"] = "float32";
@@ -161,19 +167,19 @@ nlohmann::json hourly_description(const AnnualResults& r) {
     j["unit"] = "lx";
     j["quantity"] = "illuminance at each sensor, sky and sun, direct and reflected";
     nlohmann::json names = nlohmann::json::array();
-    for (std::size_t i = 0; i < r.scene->sensors.size(); ++i)
-        names.push_back(sensor_label(*r.scene, i));
+    for (std::size_t i = 0; i < scene.sensors.size(); ++i)
+        names.push_back(sensor_label(scene, i));
     j["sensors"] = names;
     j["hour_convention"] = "EPW: hour h (1-24) is the hour ending at h, local standard time";
     nlohmann::json hours = nlohmann::json::array();
-    for (const annual::WeatherHour& h : r.weather->hours)
+    for (const annual::WeatherHour& h : r.weather.hours)
         hours.push_back({h.month, h.day, h.hour});
     j["hours"] = hours;
     j["hours_columns"] = {"month", "day", "hour"};
     return j;
 }
 
-void write_hourly(const AnnualResults& r, const std::string& dir) {
+void write_hourly(const Scene& scene, const AnnualResult& r, const std::string& dir) {
     static_assert(std::endian::native == std::endian::little,
                   "hourly_illuminance.f32 is written as the machine's floats: little-endian");
     // Eigen stores column-major (hours of one sensor apart): transpose to sensor-major rows.
@@ -185,7 +191,23 @@ void write_hourly(const AnnualResults& r, const std::string& dir) {
         out.close();
     });
     write_text_file((fs::path(dir) / "hourly_illuminance.json").string(),
-                    hourly_description(r).dump() + "\n");
+                    hourly_description(scene, r).dump() + "\n");
+}
+
+/// Every metric per element, and the mean illuminance, as cell data on the leaf mesh.
+void write_mesh_metrics(const Scene& scene, const MeshMetrics& m, const std::string& path) {
+    std::vector<viewer::CellArray> arrays;
+    for (const AnnualMetric& metric : annual_metrics()) {
+        std::vector<double> values;
+        values.reserve(m.elements.size());
+        for (const SensorMetrics& e : m.elements)
+            values.push_back(metric.value(e));
+        arrays.push_back({std::string(metric.column), std::string(metric.unit), std::move(values)});
+    }
+    arrays.push_back(
+        {"mean_illuminance_lx", "lx",
+         std::vector<double>(m.mean_illuminance_lx.begin(), m.mean_illuminance_lx.end())});
+    viewer::write_cell_arrays_vtu(path, scene, m.mesh, arrays);
 }
 
 /// Whether \p name is a file this module writes per grid or sensor: annual_*.png,
@@ -197,8 +219,10 @@ bool annual_file_name(const std::string& name) {
 }
 
 /// Removes the files an earlier run left that this one does not write (other grids, another
-/// heat-map sensor, the hourly files without --hourly), so that a folder never mixes two runs.
-void remove_stale_files(const std::string& dir, const std::vector<std::string>& keep, bool hourly) {
+/// heat-map sensor, the hourly files without --hourly, the mesh without --mesh), so that a
+/// folder never mixes two runs.
+void remove_stale_files(const std::string& dir, const std::vector<std::string>& keep, bool hourly,
+                        bool mesh) {
     std::error_code ec;
     std::vector<fs::path> stale;
     for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
@@ -210,6 +234,8 @@ void remove_stale_files(const std::string& dir, const std::vector<std::string>& 
     if (!hourly)
         for (const char* name : {"hourly_illuminance.f32", "hourly_illuminance.json"})
             stale.push_back(fs::path(dir) / name);
+    if (!mesh)
+        stale.push_back(fs::path(dir) / "annual_mesh.vtu");
     for (const fs::path& path : stale)
         fs::remove(path, ec);
 }
@@ -243,14 +269,14 @@ std::optional<std::size_t> heat_map_sensor(const Scene& scene,
     return scene.sensors.empty() ? std::nullopt : std::optional<std::size_t>(0);
 }
 
-std::string annual_csv(const AnnualResults& r) {
+std::string annual_csv(const Scene& scene, const AnnualResult& r) {
     std::string out = "name,x,y,z";
     for (const AnnualMetric& metric : annual_metrics())
         out += fmt::format(",{}", metric.column);
     out += "\n";
-    for (std::size_t i = 0; i < r.scene->sensors.size(); ++i) {
-        const Vec3& p = r.scene->sensors[i].position;
-        out += fmt::format("{},{:.6g},{:.6g},{:.6g}", sensor_label(*r.scene, i), p.x, p.y, p.z);
+    for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
+        const Vec3& p = scene.sensors[i].position;
+        out += fmt::format("{},{:.6g},{:.6g},{:.6g}", sensor_label(scene, i), p.x, p.y, p.z);
         for (const AnnualMetric& metric : annual_metrics())
             out += fmt::format(",{:.6g}", metric.value(r.sensors[i]));
         out += "\n";
@@ -258,41 +284,10 @@ std::string annual_csv(const AnnualResults& r) {
     return out;
 }
 
-std::string annual_summary_json(const AnnualResults& r) {
-    nlohmann::json j;
-    j["sensors"] = r.scene->sensors.size();
-    j["hours"] = r.weather->hours.size();
-    j["occupied_hours"] = std::count(r.occupied.begin(), r.occupied.end(), true);
-    j["occupancy"] = {{"start_hour", r.occupancy.start_hour}, {"end_hour", r.occupancy.end_hour}};
-    const MetricThresholds& t = r.thresholds;
-    j["thresholds"] = {{"daylight_autonomy_lx", t.daylight_autonomy_lx},
-                       {"udi_lower_lx", t.udi_lower_lx},
-                       {"udi_upper_lx", t.udi_upper_lx},
-                       {"sda_pct", 100 * t.sda_fraction},
-                       {"ase_lx", t.ase_lx},
-                       {"ase_hours", t.ase_hours}};
-    nlohmann::json grids = nlohmann::json::array();
-    for (std::size_t g = 0; g < r.scene->grids.size(); ++g) {
-        const SensorGrid& grid = r.scene->grids[g];
-        grids.push_back({{"name", grid.name},
-                         {"points", std::count_if(grid.sensors.begin(), grid.sensors.end(),
-                                                  [](const auto& s) { return s.has_value(); })},
-                         {"sda_pct", 100 * r.grids[g].spatial_daylight_autonomy},
-                         {"ase_pct", 100 * r.grids[g].annual_sunlight_exposure}});
-    }
-    j["grids"] = grids;
-    for (const auto& [key, value] : r.run.items()) {
-        if (j.contains(key))
-            throw InternalError(fmt::format("annual summary.json: run key '{}' is taken", key));
-        j[key] = value;
-    }
-    return j.dump(2) + "\n";
-}
-
-void write_annual_outputs(const AnnualResults& r, const AnnualOutputOptions& options,
-                          const Context& ctx) {
-    check_sizes(r);
-    const std::optional<std::size_t> heat_map = heat_map_sensor(*r.scene, options.heat_map_sensor);
+void write_annual(const Scene& scene, const AnnualResult& r, const AnnualWriteOptions& options,
+                  const Context& ctx) {
+    check_sizes(scene, r);
+    const std::optional<std::size_t> heat_map = heat_map_sensor(scene, options.heat_map_sensor);
     const std::string& dir = options.directory;
     check_output_dir(dir);
     std::error_code ec;
@@ -300,22 +295,24 @@ void write_annual_outputs(const AnnualResults& r, const AnnualOutputOptions& opt
     if (ec)
         throw ConfigError(fmt::format("cannot create output folder '{}': {}", dir, ec.message()));
     const auto path = [&](const std::string& name) { return (fs::path(dir) / name).string(); };
-    write_text_file(path("annual.csv"), annual_csv(r));
-    write_text_file(path("summary.json"), annual_summary_json(r));
+    write_text_file(path("annual.csv"), annual_csv(scene, r));
+    write_text_file(path("summary.json"), annual_summary_json(scene, r));
     std::vector<std::string> written;
-    for (std::size_t g = 0; g < r.scene->grids.size(); ++g) {
-        write_grid_files(r, g, dir);
+    for (std::size_t g = 0; g < scene.grids.size(); ++g) {
+        write_grid_files(scene, r, g, dir);
         for (const AnnualMetric& metric : annual_metrics())
-            written.push_back(plan_file(r.scene->grids[g], metric));
-        written.push_back("annual_" + r.scene->grids[g].name + ".vtp");
+            written.push_back(plan_file(scene.grids[g], metric));
+        written.push_back("annual_" + scene.grids[g].name + ".vtp");
     }
     if (heat_map) {
-        written.push_back("heat_map_" + file_safe(sensor_label(*r.scene, *heat_map)) + ".png");
-        write_heat_map(r, *heat_map, path(written.back()));
+        written.push_back("heat_map_" + file_safe(sensor_label(scene, *heat_map)) + ".png");
+        write_heat_map(scene, r, *heat_map, path(written.back()));
     }
     if (options.hourly)
-        write_hourly(r, dir);
-    remove_stale_files(dir, written, options.hourly);
+        write_hourly(scene, r, dir);
+    if (r.mesh)
+        write_mesh_metrics(scene, *r.mesh, path("annual_mesh.vtu"));
+    remove_stale_files(dir, written, options.hourly, r.mesh.has_value());
     ctx.info("annual: wrote annual.csv, summary.json and {} pictures and point files to {}",
              written.size(), dir);
 }

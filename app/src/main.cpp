@@ -328,14 +328,19 @@ int run_annual(AnnualFlags& flags, const CommonFlags& common) {
         flags.options.occupancy = parse_occupancy(flags.occupancy);
     if (flags.from_illuminance)
         flags.options.sky.input = annual::WeatherInput::illuminance;
-    app::check_annual_outputs(scene, flags.write);
+    app::check_annual_run(scene, flags.options, flags.write);
     const app::AnnualResult result = app::run_annual(scene, flags.options, ctx);
-    app::write_annual(scene, flags.options, result, flags.write, ctx);
-    ctx.info("wrote {}: {} sensors, {} hours ({} occupied), {} sky patches and {} sun bins; "
-             "coefficients {:.1f} s, hours and metrics {:.1f} s",
+    app::write_annual(scene, result, flags.write, ctx);
+    ctx.info("wrote {}: {} sensors, {} hours ({} occupied), {} sky patches and {} sun bins",
              flags.write.directory, scene.sensors.size(), result.weather.hours.size(),
              std::count(result.occupied.begin(), result.occupied.end(), true), result.patches,
-             result.sun_bins, result.coefficient_seconds, result.hours_seconds);
+             result.sun_bins);
+    for (const auto& [stage, seconds] : result.seconds)
+        ctx.info("  {}: {:.1f} s", stage, seconds);
+    for (const app::BlindsGroup& group : result.blinds)
+        ctx.info("blinds of {}: closed in {} of the year's hours",
+                 group.name.empty() ? "the sensors of no grid" : "grid " + group.name,
+                 std::count(group.closed.begin(), group.closed.end(), true));
     for (std::size_t g = 0; g < scene.grids.size(); ++g)
         ctx.info("grid {}: sDA {:.1f} %, ASE {:.1f} %", scene.grids[g].name,
                  100 * result.grids[g].spatial_daylight_autonomy,
@@ -447,6 +452,13 @@ int main(int argc, char** argv) {
     annual_cmd->add_option("--heat-map", annual.heat_map,
                            "the sensor of the hour × day heat map (default: the first grid's "
                            "first point)");
+    annual_cmd->add_flag("--blinds", annual.options.blinds,
+                         "LM-83's blinds rule: per grid, the hours in which more than 2 % of its "
+                         "points get over 1000 lx of direct sun take the illuminance of the "
+                         "scene's `annual.blinds` state (ASE stays that of the open state)");
+    annual_cmd->add_flag("--mesh", annual.options.mesh,
+                         "also the metrics on every element of the mesh (annual_mesh.vtu); "
+                         "memory: elements × (patches + 2 × sun bins) floats");
     annual_cmd
         ->add_option("--max-edge", annual.scene.max_edge_m,
                      "element size in metres (overrides mesher.max_edge_length)")

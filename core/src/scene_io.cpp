@@ -105,32 +105,49 @@ void add_radiance_sources(Scene& scene, const radiance::Sources& sources) {
     }
 }
 
-/// Overrides only the keys the scene file gives; a new name defines a new material.
+/// Overrides only the keys \p spec gives.
+void apply_material_spec(Material& material, const MaterialSpec& spec) {
+    if (spec.reflectance)
+        material.reflectance = *spec.reflectance;
+    if (spec.diffuse_transmittance)
+        material.diffuse_transmittance = *spec.diffuse_transmittance;
+    if (spec.emission) {
+        material.emission = *spec.emission;
+        material.emission_flux_lm.reset();
+    }
+    if (spec.emission_flux_lm) {
+        material.emission = spec.emission_color.value_or(Rgb(1.0f)); // scaled later
+        material.emission_flux_lm = spec.emission_flux_lm;
+    }
+    if (spec.two_sided)
+        material.two_sided = *spec.two_sided;
+    if (spec.emission_two_sided)
+        material.emission_two_sided = *spec.emission_two_sided;
+    if (spec.lobe) {
+        material.lobe = *spec.lobe;
+        // A metal, a mirror or glass reflects only through its lobe.
+        if (material.lobe && !spec.reflectance)
+            material.reflectance = diffuse_reflectance(material);
+    }
+}
+
+/// A new name defines a new material.
 void apply_materials(Scene& scene, const std::vector<MaterialSpec>& specs) {
+    for (const MaterialSpec& spec : specs)
+        apply_material_spec(scene.materials[find_or_add_material(scene, spec.name)], spec);
+}
+
+/// `annual.blinds`: copies of the named scene materials with the entries' keys applied.
+void apply_blinds(Scene& scene, const std::vector<MaterialSpec>& specs) {
     for (const MaterialSpec& spec : specs) {
-        Material& material = scene.materials[find_or_add_material(scene, spec.name)];
-        if (spec.reflectance)
-            material.reflectance = *spec.reflectance;
-        if (spec.diffuse_transmittance)
-            material.diffuse_transmittance = *spec.diffuse_transmittance;
-        if (spec.emission) {
-            material.emission = *spec.emission;
-            material.emission_flux_lm.reset();
-        }
-        if (spec.emission_flux_lm) {
-            material.emission = spec.emission_color.value_or(Rgb(1.0f)); // scaled later
-            material.emission_flux_lm = spec.emission_flux_lm;
-        }
-        if (spec.two_sided)
-            material.two_sided = *spec.two_sided;
-        if (spec.emission_two_sided)
-            material.emission_two_sided = *spec.emission_two_sided;
-        if (spec.lobe) {
-            material.lobe = *spec.lobe;
-            // A metal, a mirror or glass reflects only through its lobe.
-            if (material.lobe && !spec.reflectance)
-                material.reflectance = diffuse_reflectance(material);
-        }
+        const auto found = find_material(scene, spec.name);
+        if (!found)
+            throw InputError(scene.file, "annual.blinds." + spec.name,
+                             "no material of this name in the scene: the blinds' entries change "
+                             "the scene's materials");
+        Material material = scene.materials[*found];
+        apply_material_spec(material, spec);
+        scene.annual.blinds.push_back(std::move(material));
     }
 }
 
@@ -409,8 +426,9 @@ void validate_lobe(const Scene& scene, const Lobe& lobe, const std::string& key)
     }
 }
 
-void validate_material(const Scene& scene, const Material& m) {
-    const std::string key = "materials." + m.name;
+void validate_material(const Scene& scene, const Material& m,
+                       const std::string& key_prefix = "materials.") {
+    const std::string key = key_prefix + m.name;
     if (m.lobe)
         validate_lobe(scene, *m.lobe, key);
     bool reflectance_ok = true;
@@ -593,6 +611,7 @@ Scene parse_scene(const std::string& json_text, const std::string& file_name,
     add_radiance_sources(scene, radiance.sources());
     apply_materials(scene, spec.materials);
     apply_default_emission_sides(scene, spec);
+    apply_blinds(scene, spec.blinds);
     add_inline_polygons(scene, spec.polygons);
     apply_smooth_objects(scene, spec.smooth_objects);
     if (spec.sensor_file) {
@@ -612,6 +631,8 @@ void validate_scene(Scene& scene, SceneLight light) {
         validate_polygon(scene, polygon);
     for (const Material& material : scene.materials)
         validate_material(scene, material);
+    for (const Material& material : scene.annual.blinds)
+        validate_material(scene, material, "annual.blinds.");
     validate_lights_and_sensors(scene);
     validate_sensor_grids(scene);
     if (scene.camera)

@@ -1068,6 +1068,14 @@ void parse_surfaces(const Field& root, SceneSpec& spec) {
             .fail("the scene has no geometry: give 'geometry' files or inline 'polygons'");
 }
 
+/// `annual`: the blinds' materials, overrides of the scene's, parsed as `materials` entries.
+void parse_annual(const Field& field, SceneSpec& spec) {
+    field.expect_keys({"blinds"});
+    if (field.has("blinds"))
+        for (const auto& [name, entry] : field.child("blinds").members())
+            spec.blinds.push_back(parse_material(entry, name));
+}
+
 /// point_lights, site, sun, sky, sensors, camera and image, mesher, solver.
 void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
     const double scale = spec.metres_per_unit;
@@ -1099,6 +1107,8 @@ void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
         parse_render(root, scene);
     if (root.has("lightmap"))
         scene.lightmap = parse_lightmap(root.child("lightmap"));
+    if (root.has("annual"))
+        parse_annual(root.child("annual"), spec);
     if (root.has("background")) {
         if (root.has("sky"))
             root.child("background")
@@ -1113,12 +1123,12 @@ void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
 SceneSpec parse_scene_json(const std::string& text, const std::string& file_name) {
     const Json json = parse_json(text, file_name);
     const Field root(json, "", file_name);
-    root.expect_keys({"name",          "units",     "up",           "geometry",
-                      "polygons",      "materials", "point_lights", "sun",
-                      "site",          "sky",       "sensors",      "grids",
-                      "camera",        "image",     "mesher",       "solver",
-                      "render",        "lightmap",  "background",   "emission_two_sided",
-                      "smooth_objects"});
+    root.expect_keys({"name",           "units",     "up",           "geometry",
+                      "polygons",       "materials", "point_lights", "sun",
+                      "site",           "sky",       "sensors",      "grids",
+                      "camera",         "image",     "mesher",       "solver",
+                      "render",         "lightmap",  "background",   "emission_two_sided",
+                      "smooth_objects", "annual"});
     SceneSpec spec;
     spec.scene.file = file_name;
     if (root.has("name"))

@@ -58,6 +58,7 @@ struct SceneSpec {
     std::vector<std::string> geometry;      ///< as written, relative to the scene folder
     std::optional<std::string> sensor_file; ///< `sensors.file`, as written
     std::vector<MaterialSpec> materials;
+    std::vector<MaterialSpec> blinds; ///< `annual.blinds`: overrides of scene materials
     /// Top-level `emission_two_sided`: for every material that does not give its own.
     std::optional<bool> emission_two_sided;
     /// `smooth_objects`: the object names whose polygons keep their vertex normals; unset =

@@ -15,7 +15,6 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <png.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
@@ -25,6 +24,7 @@
 #include <vtkStringArray.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include "common/output_files.h"
 #include "common/test_util.h"
 #include "core/error.h"
 
@@ -81,10 +81,10 @@ float illuminance(std::size_t sensor, int hour) {
     return float(100 * k_factors[sensor] * std::max(0, hour - 8));
 }
 
-AnnualResults synthetic_results(const Scene& scene, const annual::Weather& weather) {
-    AnnualResults r;
-    r.scene = &scene;
-    r.weather = &weather;
+AnnualResult synthetic_results(const Scene& scene, const annual::Weather& weather) {
+    AnnualResult r;
+    r.weather = weather;
+    r.patches = 146;
     const auto n = Eigen::Index(scene.sensors.size()), hours = Eigen::Index(weather.hours.size());
     r.illuminance_lx.resize(n, hours);
     r.direct_sun_lx.setZero(n, hours);
@@ -102,48 +102,17 @@ AnnualResults synthetic_results(const Scene& scene, const annual::Weather& weath
                 r.direct_sun_lx(s, i) = 5000;
         }
     }
-    r.occupied = annual::occupied_hours(weather.hours.size(), r.occupancy);
+    r.occupied = annual::occupied_hours(weather.hours.size(), r.options.occupancy);
     r.sensors = annual::sensor_metrics(r.illuminance_lx, r.direct_sun_lx, r.occupied);
     std::vector<annual::SensorMetrics> grid_sensors(r.sensors.begin() + 1, r.sensors.end());
     r.grids.push_back(annual::grid_metrics(grid_sensors, r.occupied));
-    r.run = {{"weather_file", "synthetic.epw"}, {"patches", 146}};
+    r.seconds = {{"coefficients", 1.5}, {"hours", 0.5}};
     return r;
 }
 
-std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
-    std::ifstream in(path);
-    std::vector<std::vector<std::string>> rows;
-    for (std::string line; std::getline(in, line);) {
-        std::vector<std::string> cells;
-        std::stringstream ss(line);
-        for (std::string cell; std::getline(ss, cell, ',');)
-            cells.push_back(cell);
-        rows.push_back(cells);
-    }
-    return rows;
-}
-
-struct Png {
-    int width = 0, height = 0;
-    std::vector<std::uint8_t> rgb;
-    Rgb8 at(int x, int y) const {
-        const std::size_t i = 3 * (std::size_t(y) * std::size_t(width) + std::size_t(x));
-        return {rgb[i], rgb[i + 1], rgb[i + 2]};
-    }
-};
-
-Png read_png(const fs::path& path) {
-    png_image image{};
-    image.version = PNG_IMAGE_VERSION;
-    Png png;
-    if (!png_image_begin_read_from_file(&image, path.c_str()))
-        return png;
-    image.format = PNG_FORMAT_RGB;
-    png.width = int(image.width), png.height = int(image.height);
-    png.rgb.resize(PNG_IMAGE_SIZE(image));
-    png_image_finish_read(&image, nullptr, png.rgb.data(), 0, nullptr);
-    return png;
-}
+using test::Png;
+using test::read_csv;
+using test::read_png;
 
 std::size_t distinct_colours(const Png& png) {
     std::set<std::uint32_t> colours;
@@ -162,14 +131,14 @@ protected:
         options_.directory = dir_;
         options_.hourly = true;
         options_.heat_map_sensor = "wp:1:2";
-        write_annual_outputs(results_, options_, test::quiet_context());
+        write_annual(scene_, results_, options_, test::quiet_context());
     }
     void TearDown() override { fs::remove_all(dir_); }
 
     Scene scene_ = small_scene();
     annual::Weather weather_ = calendar_year();
-    AnnualResults results_ = synthetic_results(scene_, weather_);
-    AnnualOutputOptions options_;
+    AnnualResult results_ = synthetic_results(scene_, weather_);
+    AnnualWriteOptions options_;
     fs::path dir_;
 };
 
@@ -235,14 +204,11 @@ TEST_F(AnnualOutputs, SummaryHasGridStatisticsThresholdsAndTheRun) {
     EXPECT_EQ(j["grids"][0]["points"], 6);
     EXPECT_NEAR(j["grids"][0]["sda_pct"].get<double>(), 100.0 * 5 / 6, 1e-9);
     EXPECT_NEAR(j["grids"][0]["ase_pct"].get<double>(), 100.0 / 6, 1e-9);
-    EXPECT_EQ(j["weather_file"], "synthetic.epw");
-    EXPECT_EQ(j["patches"], 146);
-}
-
-TEST_F(AnnualOutputs, SummaryRefusesARunKeyItWritesItself) {
-    AnnualResults clash = synthetic_results(scene_, weather_);
-    clash.run["grids"] = 1;
-    EXPECT_THROW(annual_summary_json(clash), InternalError);
+    EXPECT_EQ(j["weather"]["file"], "synthetic.epw");
+    EXPECT_EQ(j["sky_patches"]["count"], 146);
+    EXPECT_EQ(j["seconds"]["coefficients"], 1.5);
+    EXPECT_FALSE(j.contains("blinds"));
+    EXPECT_FALSE(j.contains("mesh"));
 }
 
 TEST_F(AnnualOutputs, OnePlanPerGridAndMetricOfThePlansSize) {
@@ -361,9 +327,9 @@ TEST_F(AnnualOutputs, HourlyValuesRoundTrip) {
 
 TEST_F(AnnualOutputs, UnknownHeatMapSensorIsAOneLineErrorBeforeAnyFile) {
     const std::string other = test::temp_dir("annual_bad");
-    AnnualOutputOptions bad{other, false, "wp:9:9"};
+    AnnualWriteOptions bad{other, false, "wp:9:9"};
     try {
-        write_annual_outputs(results_, bad, test::quiet_context());
+        write_annual(scene_, results_, bad, test::quiet_context());
         FAIL() << "no error";
     } catch (const ConfigError& e) {
         const std::string what = e.what();
@@ -381,7 +347,7 @@ TEST_F(AnnualOutputs, UnknownHeatMapSensorIsAOneLineErrorBeforeAnyFile) {
 TEST_F(AnnualOutputs, RerunRemovesFilesItNoLongerWrites) {
     EXPECT_EQ(heat_map_sensor(scene_, std::nullopt), std::optional<std::size_t>(1));
     std::ofstream(dir_ / "annual_notes.txt") << "mine";
-    write_annual_outputs(results_, {dir_, false, std::nullopt}, test::quiet_context());
+    write_annual(scene_, results_, {dir_, false, std::nullopt}, test::quiet_context());
     EXPECT_TRUE(fs::exists(dir_ / "heat_map_wp_0_0.png"));
     EXPECT_FALSE(fs::exists(dir_ / "heat_map_wp_1_2.png"));
     EXPECT_FALSE(fs::exists(dir_ / "hourly_illuminance.f32"));
@@ -390,12 +356,57 @@ TEST_F(AnnualOutputs, RerunRemovesFilesItNoLongerWrites) {
     EXPECT_TRUE(fs::exists(dir_ / "annual_notes.txt"));
 }
 
+// LM-83's blinds on the synthetic year: a group closes them when more than 2 % of its sensors
+// get direct sun over 1000 lx. The grid (6 points, so one is enough; largest factor 6) closes
+// at hour 12 on days 1 … 300 and at hour 20 every day (5000 lx): 665 hours, 300 occupied; the
+// desk, a group of its own (factor 3), at hour 12 on days 1 … 150 and at hour 20: 515 and 150.
+// In those hours the shaded values (here 7 lx everywhere) replace the group's own.
+TEST(AnnualBlinds, ClosedHoursAndValuesOnAHandBuiltYear) {
+    const Scene scene = small_scene();
+    const annual::Weather weather = calendar_year();
+    AnnualResult r = synthetic_results(scene, weather);
+    r.options.blinds = true;
+    r.blinds = blinds_groups(scene);
+    ASSERT_EQ(r.blinds.size(), 2u);
+    EXPECT_EQ(r.blinds[0].name, "wp");
+    EXPECT_EQ(r.blinds[0].sensors, (std::vector<std::uint32_t>{1, 2, 3, 4, 5, 6}));
+    EXPECT_EQ(r.blinds[1].name, "");
+    EXPECT_EQ(r.blinds[1].sensors, (std::vector<std::uint32_t>{0}));
+    const Eigen::MatrixXf open = r.illuminance_lx;
+    const Eigen::MatrixXf shaded = Eigen::MatrixXf::Constant(open.rows(), open.cols(), 7.0f);
+    apply_blinds(r.blinds, r.direct_sun_lx, shaded, {}, r.illuminance_lx);
+    const auto closed_by_hand = [](int factor, int day, int hour) {
+        return hour == 20 || (hour == 12 && day <= 50 * factor);
+    };
+    for (std::size_t i = 0; i < weather.hours.size(); ++i) {
+        const int day = int(i / 24) + 1, hour = weather.hours[i].hour;
+        const bool grid_closed = closed_by_hand(6, day, hour);
+        const bool desk_closed = closed_by_hand(3, day, hour);
+        ASSERT_EQ(r.blinds[0].closed[i], grid_closed) << i;
+        ASSERT_EQ(r.blinds[1].closed[i], desk_closed) << i;
+        for (Eigen::Index s = 0; s < 7; ++s) {
+            const bool closed = s == 0 ? desk_closed : grid_closed;
+            ASSERT_EQ(r.illuminance_lx(s, Eigen::Index(i)),
+                      closed ? 7.0f : open(s, Eigen::Index(i)))
+                << s << " " << i;
+        }
+    }
+    const nlohmann::json j = nlohmann::json::parse(annual_summary_json(scene, r));
+    ASSERT_EQ(j["blinds"].size(), 2u);
+    EXPECT_EQ(j["blinds"][0]["group"], "wp");
+    EXPECT_EQ(j["blinds"][0]["closed_hours"], 665);
+    EXPECT_EQ(j["blinds"][0]["closed_occupied_hours"], 300);
+    EXPECT_EQ(j["blinds"][1]["sensors"], 1);
+    EXPECT_EQ(j["blinds"][1]["closed_hours"], 515);
+    EXPECT_EQ(j["blinds"][1]["closed_occupied_hours"], 150);
+}
+
 TEST(AnnualOutputsSizes, MatricesThatDoNotFitTheSceneAreAnInternalError) {
     const Scene scene = small_scene();
     const annual::Weather weather = calendar_year();
-    AnnualResults r = synthetic_results(scene, weather);
+    AnnualResult r = synthetic_results(scene, weather);
     r.direct_sun_lx.conservativeResize(6, Eigen::NoChange);
-    EXPECT_THROW(write_annual_outputs(r, {test::temp_dir("annual_sizes")}, test::quiet_context()),
+    EXPECT_THROW(write_annual(scene, r, {test::temp_dir("annual_sizes")}, test::quiet_context()),
                  InternalError);
 }
 

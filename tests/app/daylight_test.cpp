@@ -85,15 +85,7 @@ TEST(GlazingUnderSky, PaneScalesAUniformSkyByItsHemisphericalTransmittance) {
     const double radiance = 10.0; // W/(sr·m²)
     Scene scene;
     auto black = add_material(scene, "black", Rgb(0), {}, false);
-    Material glass;
-    glass.name = "glass";
-    glass.reflectance = Rgb(0);
-    ThinGlass pane; // Radiance glass, tn = 0.762842, n = 1.52: 0.620 hemispherically
-    pane.transmissivity = Rgb(0.762842f);
-    pane.ior = 1.52;
-    glass.lobe = pane;
-    scene.materials.push_back(glass);
-    const auto glass_id = std::uint32_t(scene.materials.size() - 1);
+    const auto glass_id = test::add_clear_glass(scene); // 0.620 hemispherically
     add_rect(scene, "floor", black, {-1, -1, 0}, {2, 0, 0}, {0, 2, 0});
     add_rect(scene, "pane", glass_id, {-10, -10, 0.05}, {20, 0, 0}, {0, 20, 0});
     scene.sky = Sky{};
@@ -114,12 +106,7 @@ TEST(GlazingUnderSky, PaneScalesAUniformSkyByItsHemisphericalTransmittance) {
 TEST(GlazingUnderSky, GlazedRoomPowerBalances) {
     Scene scene;
     auto grey = add_material(scene, "grey", Rgb(0.5f));
-    Material glass;
-    glass.name = "glass";
-    glass.reflectance = Rgb(0);
-    glass.lobe = ThinGlass{Rgb(0.762842f), 1.52};
-    scene.materials.push_back(glass);
-    const auto glass_id = std::uint32_t(scene.materials.size() - 1);
+    const auto glass_id = test::add_clear_glass(scene);
     // A 4 × 3 × 2.5 m room, window 1 × 1 m in the wall y = 0 (x 1.5–2.5, z 0.8–1.8).
     test::add_side_lit_room(scene, grey, glass_id, 1.5, 2.5);
     scene.sky = overcast_sky(1e4);

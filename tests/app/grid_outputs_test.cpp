@@ -12,10 +12,10 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include "app/pipeline.h"
 #include "common/bake_util.h"
+#include "common/output_files.h"
 #include "common/test_util.h"
 #include "core/scene_io.h"
 
@@ -54,27 +54,11 @@ double lambert_lx(const Vec3& p) {
     return k_intensity_cd * d.z / std::pow(length(d), 3);
 }
 
-std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
-    std::ifstream in(path);
-    std::vector<std::vector<std::string>> rows;
-    for (std::string line; std::getline(in, line);) {
-        std::vector<std::string> cells;
-        std::stringstream ss(line);
-        for (std::string cell; std::getline(ss, cell, ',');)
-            cells.push_back(cell);
-        rows.push_back(cells);
-    }
-    return rows;
-}
+using test::read_csv;
 
 std::pair<int, int> png_size(const fs::path& path) {
-    png_image png{};
-    png.version = PNG_IMAGE_VERSION;
-    if (!png_image_begin_read_from_file(&png, path.c_str()))
-        return {0, 0};
-    const std::pair<int, int> size{int(png.width), int(png.height)};
-    png_image_free(&png);
-    return size;
+    const test::Png png = test::read_png(path);
+    return {png.width, png.height};
 }
 
 class GridOutputs : public ::testing::Test {

@@ -200,6 +200,15 @@ void add_cie171_room_without_ceiling(Scene& scene, std::uint32_t material) {
     add_rect(scene, "wall_x4", material, {4, 0, 0}, {0, 0, h}, {0, 4, 0});
 }
 
+std::uint32_t add_clear_glass(Scene& scene, const std::string& name) {
+    Material glass;
+    glass.name = name;
+    glass.reflectance = Rgb(0);
+    glass.lobe = ThinGlass{Rgb(0.762842f), 1.52};
+    scene.materials.push_back(glass);
+    return std::uint32_t(scene.materials.size() - 1);
+}
+
 void add_side_lit_room(Scene& scene, std::uint32_t walls, std::uint32_t pane, double window_x0,
                        double window_x1) {
     add_rect(scene, "floor", walls, {0, 0, 0}, {4, 0, 0}, {0, 3, 0});

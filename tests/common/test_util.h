@@ -85,6 +85,11 @@ void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t materi
 /// in [0, 4], z in [0, 3]; the tests add their own ceilings.
 void add_cie171_room_without_ceiling(Scene& scene, std::uint32_t material);
 
+/// \brief Adds Radiance's clear glass as a thin_glass material (transmissivity 0.762842 at
+///        normal incidence, n = 1.52: 0.620 hemispherically, no diffuse part); returns its
+///        index.
+std::uint32_t add_clear_glass(Scene& scene, const std::string& name = "glass");
+
 /// \brief Adds a 4 × 3 × 2.5 m room (walls facing inwards) with a window in its wall y = 0:
 ///        x from \p window_x0 to \p window_x1, z from 0.8 to 1.8 m, filled by a polygon of
 ///        material \p pane.

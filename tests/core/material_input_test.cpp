@@ -407,3 +407,40 @@ TEST(SceneKeys, EmissionTwoSidedDefault) {
 
 } // namespace
 } // namespace penumbra
+namespace penumbra {
+namespace {
+
+// `annual.blinds`: each entry is a copy of the scene's material of that name with the entry's
+// keys applied (the pane turned diffusing, another's reflectance changed); the scene's own
+// materials are unchanged. A name the scene lacks, or a shaded material out of range, is a
+// one-line error naming the key.
+TEST(SceneKeys, AnnualBlindsOverrideSceneMaterials) {
+    const Scene scene = parse(squares_scene(
+        {"pane", "wall"},
+        R"("pane": {"type": "thin_glass", "transmissivity": 0.8}, "wall": {"reflectance": 0.5})",
+        R"(, "annual": {"blinds": {
+             "pane": {"type": "diffuse", "reflectance": 0.4, "diffuse_transmittance": 0.2},
+             "wall": {"reflectance": 0.3}}})"));
+    ASSERT_EQ(scene.annual.blinds.size(), 2u);
+    const Material& pane = scene.annual.blinds[0];
+    EXPECT_EQ(pane.name, "pane");
+    EXPECT_FALSE(pane.lobe.has_value());
+    EXPECT_EQ(pane.reflectance, Rgb(0.4f));
+    EXPECT_EQ(pane.diffuse_transmittance, Rgb(0.2f));
+    EXPECT_EQ(scene.annual.blinds[1].reflectance, Rgb(0.3f));
+    EXPECT_TRUE(lobe_of<ThinGlass>(scene, "pane").transmissivity.g > 0.7f);
+    EXPECT_EQ(material_named(scene, "wall").reflectance, Rgb(0.5f));
+    expect_error(squares_scene({"wall"}, R"("wall": {"reflectance": 0.5})",
+                               R"(, "annual": {"blinds": {"glass": {"reflectance": 0.3}}})"),
+                 {"annual.blinds.glass", "no material"});
+    expect_error(squares_scene({"wall"}, R"("wall": {"reflectance": 0.5})",
+                               R"(, "annual": {"blinds": {"wall": {"reflectance": 0.3,
+                                   "diffuse_transmittance": 0.8}}})"),
+                 {"annual.blinds.wall.diffuse_transmittance"});
+    expect_error(
+        squares_scene({"wall"}, R"("wall": {"reflectance": 0.5})", R"(, "annual": {"shades": {}})"),
+        {"annual", "shades"});
+}
+
+} // namespace
+} // namespace penumbra

@@ -29,6 +29,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace penumbra::viewer {
@@ -200,6 +201,32 @@ void write_vtu(const std::string& path, const Scene& scene, const RadiosityMesh&
                      {"luminance_cd_m2", "cd/m²"}});
 
     write_xml_file<vtkXMLUnstructuredGridWriter>(grid, path);
+}
+
+void write_cell_arrays_vtu(const std::string& path, const Scene& scene, const RadiosityMesh& mesh,
+                           const std::vector<CellArray>& arrays) {
+    check_mesh(mesh);
+    vtkNew<vtkUnstructuredGrid> grid;
+    set_geometry(grid, mesh);
+    std::vector<std::pair<std::string, std::string>> units{{"reflectance", "1"},
+                                                           {"emission", "W/m²"}};
+    for (const CellArray& a : arrays) {
+        if (a.values.size() != mesh.element_count())
+            throw InternalError(fmt::format("write_cell_arrays_vtu: '{}' has {} values for {} "
+                                            "elements",
+                                            a.name, a.values.size(), mesh.element_count()));
+        add_scalar<vtkFloatArray>(grid->GetCellData(), a.name.c_str(), a.values.size(),
+                                  [&](std::size_t e) { return float(a.values[e]); });
+        if (!a.unit.empty())
+            units.emplace_back(a.name, a.unit);
+    }
+    add_cell_patch_arrays(grid->GetCellData(), mesh);
+    add_field<vtkStringArray>(grid->GetFieldData(), "scene_name", scene.name);
+    add_units(grid, units);
+    write_atomically(path, [&](const std::string& temp) {
+        vtkNew<vtkXMLUnstructuredGridWriter> writer;
+        write_xml(writer, grid, temp, path);
+    });
 }
 
 } // namespace penumbra::viewer

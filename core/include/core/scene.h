@@ -216,6 +216,14 @@ struct LightmapSettings {
     int atlas_size = 1024; ///< texels along each side of an atlas
 };
 
+/// \brief Settings of `penumbra annual` (scene key `annual`, issue #31).
+struct AnnualSettings {
+    /// `annual.blinds`: the shaded state of IES LM-83's blinds rule, `penumbra annual
+    /// --blinds`: each a scene material of the same name with the entry's keys applied, which
+    /// that material's polygons take while the blinds are closed.
+    std::vector<Material> blinds;
+};
+
 struct Scene {
     std::string name;
     std::string file; ///< the scene file, for messages
@@ -232,6 +240,7 @@ struct Scene {
     SolverSettings solver;
     RenderSettings render;
     std::optional<LightmapSettings> lightmap; ///< set: `bake` writes lightmaps
+    AnnualSettings annual;
     /// Radiance W/(sr·m²) that the renderer's rays see where they leave the scene; it lights
     /// nothing (the solver does not see it: give a `sky` for light from all around).
     Rgb background;

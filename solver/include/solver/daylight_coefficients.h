@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -29,6 +30,18 @@ struct PatchBinning {
     std::function<void(const Vec3& dir, double weight, std::vector<double>& sums)> add;
 };
 
+/// \brief Coefficients of every leaf element of the system (`penumbra annual --mesh`):
+///        elements × (patches + 2 × sun directions) floats.
+struct ElementCoefficients {
+    RadiosityMesh mesh; ///< the leaf elements
+    /// Elements × patches: the element's irradiance (W/m²) per unit radiance of the patch,
+    /// seen (at its root's centroid, as the system's sky links carry it) and reflected.
+    Eigen::MatrixXf sky;
+    /// Elements × sun directions: irradiance per unit normal irradiance of the sun, direct
+    /// (the sun's links to the leaves) and reflected.
+    Eigen::MatrixXf sun_direct, sun_indirect;
+};
+
 /// \brief Irradiance (W/m²) at each sensor per unit radiance (W/(sr·m²)) of each patch:
 ///        sensors × patches.
 struct DaylightCoefficients {
@@ -40,8 +53,12 @@ struct DaylightCoefficients {
     /// Sensors × sun directions: what a sun of unit normal irradiance (W/m²) in each direction
     /// brings after reflection and transmission (its direct light is sun_direct_irradiance's).
     Eigen::MatrixXf sun_indirect;
-    std::size_t nodes = 0, links = 0; ///< of the system the coefficients were solved on
+    std::size_t nodes = 0, links = 0;            ///< of the system the coefficients were solved on
+    std::optional<ElementCoefficients> elements; ///< with CoefficientTargets::with_elements
 };
+
+/// \brief Whether daylight_coefficients() also keeps every leaf element's coefficients.
+enum class CoefficientTargets { sensors, with_elements };
 
 /// \brief \p scene as the coefficients light it: a uniform sky and ground of radiance 1 (with
 ///        the scene's compass), no sun, no point lights. The links are refined under it; mesh
@@ -53,11 +70,11 @@ Scene coefficient_scene(const Scene& scene);
 ///        The scene's own sky, sun, point lights and emission are not used: the links are
 ///        refined under a uniform sky and ground of the same radiance, then one solve per
 ///        patch and per sun reuses them. Progress per solve.
-DaylightCoefficients daylight_coefficients(const Scene& scene, const RadiosityMesh& mesh,
-                                           const VisibilityQuery& visibility,
-                                           const PatchBinning& patches,
-                                           std::span<const Vec3> sun_directions,
-                                           double sun_angular_diameter_deg, const Context& ctx);
+DaylightCoefficients
+daylight_coefficients(const Scene& scene, const RadiosityMesh& mesh,
+                      const VisibilityQuery& visibility, const PatchBinning& patches,
+                      std::span<const Vec3> sun_directions, double sun_angular_diameter_deg,
+                      const Context& ctx, CoefficientTargets targets = CoefficientTargets::sensors);
 
 /// \brief The sun's direct irradiance (W/m²) at each sensor for a sun of unit normal
 ///        irradiance in each direction of \p sun_directions (unit, toward the sun):

@@ -119,19 +119,43 @@ SourceTerms sun_sources(const HierarchicalSystem& sys, const std::vector<std::ui
     return terms;
 }
 
-// What the solution of \p sources brings each sensor (luminous: to_photometric's weights, as
-// the grey sky vectors and the suns' illuminance multiply it), into column \p column.
-void gather_solution(HierarchicalSystem& sys, const SourceTerms& sources, const LeafMesh& leaf,
-                     const std::vector<std::vector<ElementWeight>>& weights,
-                     const SolverSettings& settings, SweepLog& log, Eigen::MatrixXf& out,
-                     Eigen::Index column) {
-    solve_sources(sys, sources, settings, log);
+// The luminous part of \p c as the sensors' coefficients take it (to_photometric's weights, as
+// the grey sky vectors and the suns' illuminance multiply it).
+float luminous(const RgbD& c) {
+    return float(to_photometric(c) / k_luminous_efficacy_lm_per_w);
+}
+
+// What the solution of \p sources (solved before) brings each sensor, into column \p column.
+void gather_sensors(const HierarchicalSystem& sys, const LeafMesh& leaf,
+                    const std::vector<std::vector<ElementWeight>>& weights, Eigen::MatrixXf& out,
+                    Eigen::Index column) {
     const std::vector<Rgb>& b = sys.values.b;
     for (std::size_t s = 0; s < weights.size(); ++s) {
         RgbD sum;
         for (const ElementWeight& w : weights[s])
             sum += RgbD(b[leaf.element_node[w.element]]) * w.weight;
-        out(Eigen::Index(s), column) = float(to_photometric(sum) / k_luminous_efficacy_lm_per_w);
+        out(Eigen::Index(s), column) = luminous(sum);
+    }
+}
+
+// Each leaf element's irradiance of the solution, direct and reflected, into column \p column.
+void gather_element_totals(const HierarchicalSystem& sys, const LeafMesh& leaf,
+                           Eigen::MatrixXf& out, Eigen::Index column) {
+    const NodeValues& v = sys.values;
+    for (std::size_t e = 0; e < leaf.element_node.size(); ++e) {
+        const std::uint32_t node = leaf.element_node[e];
+        out(Eigen::Index(e), column) = luminous(RgbD(v.h_direct[node]) + RgbD(v.h_indirect[node]));
+    }
+}
+
+// Each leaf element's direct and reflected irradiance of the solution apart.
+void gather_element_parts(const HierarchicalSystem& sys, const LeafMesh& leaf,
+                          Eigen::MatrixXf& direct, Eigen::MatrixXf& indirect, Eigen::Index column) {
+    const NodeValues& v = sys.values;
+    for (std::size_t e = 0; e < leaf.element_node.size(); ++e) {
+        const std::uint32_t node = leaf.element_node[e];
+        direct(Eigen::Index(e), column) = luminous(RgbD(v.h_direct[node]));
+        indirect(Eigen::Index(e), column) = luminous(RgbD(v.h_indirect[node]));
     }
 }
 
@@ -165,7 +189,8 @@ DaylightCoefficients daylight_coefficients(const Scene& scene, const RadiosityMe
                                            const VisibilityQuery& visibility,
                                            const PatchBinning& patches,
                                            std::span<const Vec3> sun_directions,
-                                           double sun_angular_diameter_deg, const Context& ctx) {
+                                           double sun_angular_diameter_deg, const Context& ctx,
+                                           CoefficientTargets targets) {
     return run_in_arena(ctx, [&] {
         const Scene lit = coefficient_scene(scene);
         SweepLog log{mesh, nullptr, nullptr};
@@ -183,21 +208,34 @@ DaylightCoefficients daylight_coefficients(const Scene& scene, const RadiosityMe
         dc.direct = sensor_direct(scene, *lit.sky, geo, visibility, patches, ctx);
         const auto weights = sensor_weights(scene, leaf.of(mesh), geo, visibility, ctx);
         const auto sensors = Eigen::Index(scene.sensors.size());
+        const auto suns = Eigen::Index(sun_directions.size());
         dc.indirect = Eigen::MatrixXf::Zero(sensors, Eigen::Index(patches.count));
-        dc.sun_indirect = Eigen::MatrixXf::Zero(sensors, Eigen::Index(sun_directions.size()));
+        dc.sun_indirect = Eigen::MatrixXf::Zero(sensors, suns);
+        if (targets == CoefficientTargets::with_elements) {
+            const auto elements = Eigen::Index(leaf.element_node.size());
+            dc.elements = ElementCoefficients{
+                leaf.of(mesh), Eigen::MatrixXf(elements, Eigen::Index(patches.count)),
+                Eigen::MatrixXf(elements, suns), Eigen::MatrixXf(elements, suns)};
+        }
         ProgressStage progress(ctx, "daylight coefficients");
         const double solves = double(patches.count + sun_directions.size());
         const std::vector<std::uint32_t> leaves = sys->h.leaves();
         for (std::size_t p = 0; p < patches.count; ++p) {
-            gather_solution(*sys, patch_sources(roots, p), leaf, weights, scene.solver, log,
-                            dc.indirect, Eigen::Index(p));
+            solve_sources(*sys, patch_sources(roots, p), scene.solver, log);
+            gather_sensors(*sys, leaf, weights, dc.indirect, Eigen::Index(p));
+            if (dc.elements)
+                gather_element_totals(*sys, leaf, dc.elements->sky, Eigen::Index(p));
             progress.update(double(p + 1) / solves);
         }
         for (std::size_t k = 0; k < sun_directions.size(); ++k) {
-            gather_solution(
+            solve_sources(
                 *sys,
                 sun_sources(*sys, leaves, visibility, sun_directions[k], sun_angular_diameter_deg),
-                leaf, weights, scene.solver, log, dc.sun_indirect, Eigen::Index(k));
+                scene.solver, log);
+            gather_sensors(*sys, leaf, weights, dc.sun_indirect, Eigen::Index(k));
+            if (dc.elements)
+                gather_element_parts(*sys, leaf, dc.elements->sun_direct, dc.elements->sun_indirect,
+                                     Eigen::Index(k));
             progress.update(double(patches.count + k + 1) / solves);
         }
         return dc;

@@ -27,6 +27,21 @@ namespace penumbra::viewer {
 void write_vtu(const std::string& path, const Scene& scene, const RadiosityMesh& mesh,
                const Solution& solution);
 
+/// \brief One array of cell data on a mesh: a value per element, and its unit ("" for none).
+struct CellArray {
+    std::string name;
+    std::string unit;
+    std::vector<double> values;
+};
+
+/// \brief Writes \p mesh as write_vtu() does, with the cell data \p arrays (as floats) first,
+///        then the element arrays (level, surface_id, patch_id, material_id, polygon_id,
+///        back_side, reflectance, emission); no solution arrays.
+/// \throws ExternalError if VTK cannot write the file; InternalError for an array whose size
+///         is not the mesh's element count.
+void write_cell_arrays_vtu(const std::string& path, const Scene& scene, const RadiosityMesh& mesh,
+                           const std::vector<CellArray>& arrays);
+
 /// \brief Writes the sensors as a VTK XML poly data file (.vtp) of vertices: points, normals
 ///        and point data irradiance_direct, irradiance_total (RGB, W/m²),
 ///        illuminance_direct_lx, illuminance_total_lx and name. \p readings[i] belongs to

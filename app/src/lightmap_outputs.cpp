@@ -22,6 +22,13 @@ std::string atlas_file(std::size_t atlas, const char* extension) {
     return fmt::format("lightmap_{}.{}", atlas, extension);
 }
 
+// The directional atlases' suffixes, in lightmap/sh.h's order Y00, Y1−1, Y10, Y11.
+constexpr const char* k_sh_suffixes[] = {"L00", "L1m1", "L10", "L11"};
+
+std::string directional_file(std::size_t atlas, std::size_t k) {
+    return fmt::format("lightmap_{}_{}.exr", atlas, k_sh_suffixes[k]);
+}
+
 const char* kind_name(lightmap::ChartKind kind) {
     switch (kind) {
     case lightmap::ChartKind::planar:
@@ -94,12 +101,24 @@ std::string manifest_json(const Scene& scene, const LightmapOptions& options,
     j["uv"] = "texel (i, j) covers [i, i + 1) x [j, j + 1), row 0 at the top; glTF TEXCOORD_1 = "
               "(x, y) / atlas_size";
     nlohmann::json atlases = nlohmann::json::array();
-    for (std::size_t a = 0; a < r.atlases.size(); ++a)
+    for (std::size_t a = 0; a < r.atlases.size(); ++a) {
         atlases.push_back({{"exr", atlas_file(a, "exr")},
                            {"png", atlas_file(a, "png")},
                            {"coverage", r.layout.coverage[a]},
                            {"preview_exposure", exposure}});
+        if (a < r.directional.size())
+            for (std::size_t k = 0; k < 4; ++k)
+                atlases.back()["sh_exr"].push_back(directional_file(a, k));
+    }
     j["atlases"] = atlases;
+    if (!r.directional.empty())
+        j["directional"] = {
+            {"quantity", "L1 spherical harmonics of the incident radiance, per channel"},
+            {"order", "sh_exr[0..3] = L00, L1-1, L10, L11: real orthonormal SH proportional to "
+                      "(1, y, z, x) of a unit direction in the scene's axes"},
+            {"irradiance", "E(n) = pi L00 Y00(n) + (2 pi / 3) (L1-1 Y1-1(n) + L10 Y10(n) + L11 "
+                           "Y11(n)), Y00 = 0.282095, Y1m = 0.488603 (y, z, x); equals the "
+                           "irradiance atlas at the surface's normal"}};
     j["polygons"] = polygons_json(scene, r);
     nlohmann::json charts = nlohmann::json::array();
     for (std::size_t c = 0; c < r.charts.charts.size(); ++c)
@@ -110,6 +129,14 @@ std::string manifest_json(const Scene& scene, const LightmapOptions& options,
                    {"hidden_samples", r.counts.hidden_samples},
                    {"hidden_texels", r.counts.hidden_texels},
                    {"unlit_texels", r.counts.unlit_texels}};
+    const lightmap::SeamStitch& seams = r.seams;
+    j["seams"] = {{"edges", seams.edges},
+                  {"samples", seams.samples},
+                  {"texels_moved", seams.texels},
+                  {"error", "largest channel difference of the two sides' bilinear lookups at "
+                            "each seam sample, W/m2"},
+                  {"before", {{"mean", seams.before.mean}, {"max", seams.before.max}}},
+                  {"after", {{"mean", seams.after.mean}, {"max", seams.after.max}}}};
     nlohmann::json times = nlohmann::json::object();
     for (const StageTime& t : r.times)
         times[t.stage] = t.seconds;
@@ -124,6 +151,10 @@ void remove_atlas_files_from(const std::string& dir, std::size_t first) {
         for (const char* extension : {"exr", "png"}) {
             std::error_code ec;
             any |= fs::remove(fs::path(dir) / atlas_file(a, extension), ec);
+        }
+        for (std::size_t k = 0; k < 4; ++k) {
+            std::error_code ec;
+            any |= fs::remove(fs::path(dir) / directional_file(a, k), ec);
         }
         if (!any)
             return;
@@ -142,12 +173,24 @@ void write_lightmaps(const std::string& dir, const Scene& scene, const LightmapO
     for (std::size_t a = 0; a < result.atlases.size(); ++a)
         for (const char* extension : {"exr", "png"})
             names.push_back(atlas_file(a, extension));
+    for (std::size_t a = 0; a < result.directional.size(); ++a)
+        for (std::size_t k = 0; k < 4; ++k)
+            names.push_back(directional_file(a, k));
     remove_stale_temp_files(dir, names);
     const double exposure = preview_exposure(result.atlases);
     for (std::size_t a = 0; a < result.atlases.size(); ++a) {
         write_exr((fs::path(dir) / atlas_file(a, "exr")).string(), result.atlases[a], options.exr);
         write_png((fs::path(dir) / atlas_file(a, "png")).string(), result.atlases[a], exposure);
+        for (std::size_t k = 0; a < result.directional.size() && k < 4; ++k)
+            write_exr((fs::path(dir) / directional_file(a, k)).string(), result.directional[a][k],
+                      options.exr);
     }
+    // An earlier run's directional atlases, when this one has none.
+    for (std::size_t a = result.directional.size(); a < result.atlases.size(); ++a)
+        for (std::size_t k = 0; k < 4; ++k) {
+            std::error_code ignored;
+            fs::remove(fs::path(dir) / directional_file(a, k), ignored);
+        }
     remove_atlas_files_from(dir, result.atlases.size());
     write_text_file((fs::path(dir) / "lightmaps.json").string(),
                     manifest_json(scene, options, result, exposure));

@@ -4,6 +4,7 @@
 // sources give its footprint; written as linear EXR, tone-mapped PNG and a JSON manifest.
 // docs/lightmaps.md describes the method.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "core/scene.h"
 #include "lightmap/atlas.h"
 #include "lightmap/charts.h"
+#include "lightmap/seams.h"
 #include "lightmap/texels.h"
 
 namespace penumbra::app {
@@ -22,6 +24,11 @@ namespace penumbra::app {
 struct LightmapOptions {
     lightmap::AtlasSettings atlas; ///< density, atlas size, padding
     ExrPixels exr = ExrPixels::half;
+    /// Also the L1 spherical harmonics of the incident radiance per texel (four more atlases
+    /// each: lightmap_N_L00, _L1m1, _L10, _L11; docs/lightmaps.md).
+    bool directional = false;
+    /// Stitch the seams between charts after dilation (lightmap/seams.h).
+    bool stitch_seams = true;
 };
 
 /// \brief What filling found, summed over the atlases.
@@ -39,7 +46,13 @@ struct LightmapResult {
     lightmap::AtlasLayout layout;
     std::vector<lightmap::AtlasTexels> texels; ///< per atlas, its covered texels
     std::vector<Image> atlases; ///< irradiance, W/m², linear RGB, layout.size² each
+    /// With LightmapOptions::directional: per atlas the images of L00, L1−1, L10 and L11
+    /// (lightmap/sh.h's order, world axes, W/(sr·m²) × sr^½ per channel).
+    std::vector<std::array<Image, 4>> directional;
+    LightmapOptions options; ///< as plan_lightmaps was given them, for fill_lightmaps
     LightmapCounts counts;
+    /// The irradiance atlases' seams, stitched after dilation (LightmapOptions::stitch_seams).
+    lightmap::SeamStitch seams;
     int samples_per_texel = 0;    ///< footprint samples of a texel that lies wholly on its chart
     std::vector<StageTime> times; ///< charts, packing, texels, bake (all its stages), fill
     std::uint64_t rays = 0;       ///< traced by the fill

@@ -155,7 +155,8 @@ TEST(Probes, SceneKeyGivesPointsAndACentredGrid) {
         EXPECT_THROW(parse_scene(head + bad + "}", "probes.json", "."), InputError) << bad;
 }
 
-// ---- The CLI: `penumbra lightmap` writes probes.json and probes.vtp for the scene's key. ----
+// ---- The CLI: `penumbra lightmap` and `bake` write probes.json and probes.vtp for the scene's
+// key. ----
 
 TEST(Probes, CliWritesProbesJsonAndVtp) {
     const fs::path dir = test::temp_dir("probes-cli");
@@ -178,6 +179,12 @@ TEST(Probes, CliWritesProbesJsonAndVtp) {
     EXPECT_EQ(j["rays_per_probe"], 72);
     EXPECT_NE(j["convention"].get<std::string>().find("Y1-1"), std::string::npos);
     EXPECT_GT(j["probes"][0]["sh"][0][1].get<double>(), 0.0); // lit: a positive mean
+    // `bake` writes them too.
+    const test::RunResult baked = test::run_cli("bake " + (dir / "scene.json").string() + " -o " +
+                                                (dir / "baked").string() + " -q --no-render");
+    ASSERT_EQ(baked.exit_code, 0) << baked.err;
+    EXPECT_TRUE(fs::exists(dir / "baked" / "probes.json"));
+    EXPECT_TRUE(fs::exists(dir / "baked" / "probes.vtp"));
     fs::remove_all(dir);
 }
 

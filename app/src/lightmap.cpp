@@ -3,9 +3,11 @@
 
 #include "app/lightmap.h"
 
+#include "lightmap_directional.h"
 #include "lightmap_fill.h"
 #include "lightmap_preview.h"
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <utility>
@@ -27,6 +29,16 @@ decltype(auto) timed(std::vector<StageTime>& times, const char* stage, Fn&& fn) 
     return out;
 }
 
+// Seam weight: each sample's mismatch counts 10² times a texel's change, so stitching closes
+// seams to about a hundredth of their error while moving texels as little as that allows.
+constexpr double k_seam_weight = 10;
+
+// Corners this close are one (the charts' own weld tolerance: 10⁻⁶ of the scene's diagonal).
+double weld_tolerance(const Scene& scene) {
+    const BBox box = scene.bounds();
+    return 1e-6 * std::max(length(box.hi - box.lo), 1e-3);
+}
+
 } // namespace
 
 LightmapResult plan_lightmaps(const Scene& scene, const LightmapOptions& options,
@@ -39,6 +51,7 @@ LightmapResult plan_lightmaps(const Scene& scene, const LightmapOptions& options
     r.texels =
         timed(r.times, "texels", [&] { return lightmap::rasterize(r.charts, r.layout, ctx); });
     r.samples_per_texel = k_texel_samples_per_axis * k_texel_samples_per_axis;
+    r.options = options;
     return r;
 }
 
@@ -69,6 +82,31 @@ void fill_lightmaps(const Scene& scene, const BakeResult& bake, LightmapResult& 
         r.rays = rt->rays_traced();
         return 0;
     });
+    timed(r.times, "seams", [&] {
+        const lightmap::Seams found =
+            lightmap::find_seams(r.charts, r.layout, weld_tolerance(scene));
+        if (r.options.stitch_seams)
+            r.seams = lightmap::stitch_seams(r.atlases, found, k_seam_weight);
+        else {
+            const lightmap::SeamError e = lightmap::seam_error(r.atlases, found.samples);
+            r.seams = {found.edges, found.samples.size(), 0, 0, e, e};
+        }
+        return 0;
+    });
+    r.directional.clear();
+    if (r.options.directional)
+        timed(r.times, "directional", [&] {
+            const raytrace::EmbreeScene rt(bake.mesh);
+            const IncidentLight light(scene, rt, bake.solution);
+            const EmitterTable emitters = emitter_table(bake.mesh);
+            const DirectionalInputs in{&light,         &emitters, &rt,
+                                       &bake.solution, &r.charts, &r.layout};
+            for (std::size_t a = 0; a < r.texels.size(); ++a)
+                r.directional.push_back(directional_atlas(in, r.texels[a], r.atlases[a],
+                                                          r.layout.padding, ctx.seed, ctx));
+            r.rays += rt.rays_traced();
+            return 0;
+        });
     r.preview.reset();
     if (scene.camera)
         r.preview =

@@ -20,19 +20,6 @@ namespace {
 // arrays and gives the progress bar its steps.
 constexpr std::size_t k_batch_texels = 1 << 15;
 
-// How far above a sample its probe ray starts, and how far inside its element it gathers
-// direct light: 10 of the solver's ray offsets (10⁻⁵ of the scene's diagonal), the inset of
-// the vertices' own gathers on their surfaces' boundaries.
-double probe_height(const RadiosityMesh& mesh) {
-    return 1e-4 * std::max(mesh.scene_diagonal, 1e-3);
-}
-
-// A sample found on the radiosity mesh.
-struct MeshSample {
-    Vec3 gather_point; ///< where its direct light is gathered
-    Rgb indirect;      ///< the solution's indirect irradiance at the sample, W/m²
-};
-
 // The point at barycentrics \p w of triangle \p v, pulled at least \p inset inside each edge
 // (the map onto the inner triangle whose edges lie \p inset in): the rays of a sample at a
 // wall's foot then start on the sample's own side of the wall. Tiny elements: the centroid.
@@ -50,31 +37,6 @@ Vec3 inset_point(const std::array<Vec3, 3>& v, const Vec3& w, double inset) {
     const double keep = 1 - sum;
     return v[0] * (least[0] + keep * w.x) + v[1] * (least[1] + keep * w.y) +
            v[2] * (least[2] + keep * w.z);
-}
-
-// The element under sample \p s, found by a short ray down its normal from \p height above
-// it; nothing unless that element belongs to \p polygon's front side: else the sample lies on
-// a hidden or covered part (under a wall, inside a contact), where the mesher made no elements.
-std::optional<MeshSample> locate(const raytrace::EmbreeScene& rt, const Solution& solution,
-                                 const SurfacePoint& s, std::uint32_t polygon, double height) {
-    const RadiosityMesh& mesh = rt.mesh();
-    const raytrace::EmbreeScene::Hit hit = rt.intersect(Vec3f(s.position + s.normal * height),
-                                                        Vec3f(-s.normal), 0.0f, float(2 * height));
-    if (hit.element < 0)
-        return std::nullopt;
-    const auto e = std::uint32_t(hit.element);
-    const Patch& patch = mesh.patch_of(e);
-    if (patch.polygon != polygon || patch.back || dot(patch.normal, s.normal) < 1.0 - 1e-3)
-        return std::nullopt;
-    const auto& t = mesh.triangles[e];
-    const Vec3 w{1.0 - double(hit.u) - double(hit.v), double(hit.u), double(hit.v)};
-    const std::vector<Rgb>& indirect = solution.vertex_irradiance_indirect;
-    MeshSample out;
-    out.indirect =
-        indirect[t[0]] * float(w.x) + indirect[t[1]] * float(w.y) + indirect[t[2]] * float(w.z);
-    out.gather_point =
-        inset_point({mesh.vertex(t[0]), mesh.vertex(t[1]), mesh.vertex(t[2])}, w, height);
-    return out;
 }
 
 // One batch of texels' samples, k_texel_samples_per_axis² slots per texel.
@@ -105,7 +67,8 @@ SampleBatch locate_batch(const Solution& solution, const raytrace::EmbreeScene& 
         b.count[k] = std::uint8_t(samples.size());
         for (std::size_t i = 0; i < samples.size(); ++i) {
             const SurfacePoint& s = samples[i];
-            const auto found = locate(rt, solution, s, chart.triangles[s.triangle].polygon, height);
+            const auto found =
+                locate_sample(rt, solution, s, chart.triangles[s.triangle].polygon, height);
             if (!found)
                 continue;
             const std::size_t slot = k * slots + i;
@@ -208,6 +171,39 @@ std::size_t grow_into_hidden(const AtlasTexels& texels, Image& image,
 }
 
 } // namespace
+
+// How far above a sample its probe ray starts, and how far inside its element it gathers
+// direct light: 10 of the solver's ray offsets (10⁻⁵ of the scene's diagonal), the inset of
+// the vertices' own gathers on their surfaces' boundaries.
+double probe_height(const RadiosityMesh& mesh) {
+    return 1e-4 * std::max(mesh.scene_diagonal, 1e-3);
+}
+
+// The element under sample \p s, found by a short ray down its normal from \p height above
+// it; nothing unless that element belongs to \p polygon's front side: else the sample lies on
+// a hidden or covered part (under a wall, inside a contact), where the mesher made no elements.
+std::optional<MeshSample> locate_sample(const raytrace::EmbreeScene& rt, const Solution& solution,
+                                        const SurfacePoint& s, std::uint32_t polygon,
+                                        double height) {
+    const RadiosityMesh& mesh = rt.mesh();
+    const raytrace::EmbreeScene::Hit hit = rt.intersect(Vec3f(s.position + s.normal * height),
+                                                        Vec3f(-s.normal), 0.0f, float(2 * height));
+    if (hit.element < 0)
+        return std::nullopt;
+    const auto e = std::uint32_t(hit.element);
+    const Patch& patch = mesh.patch_of(e);
+    if (patch.polygon != polygon || patch.back || dot(patch.normal, s.normal) < 1.0 - 1e-3)
+        return std::nullopt;
+    const auto& t = mesh.triangles[e];
+    const Vec3 w{1.0 - double(hit.u) - double(hit.v), double(hit.u), double(hit.v)};
+    const std::vector<Rgb>& indirect = solution.vertex_irradiance_indirect;
+    MeshSample out;
+    out.indirect =
+        indirect[t[0]] * float(w.x) + indirect[t[1]] * float(w.y) + indirect[t[2]] * float(w.z);
+    out.gather_point =
+        inset_point({mesh.vertex(t[0]), mesh.vertex(t[1]), mesh.vertex(t[2])}, w, height);
+    return out;
+}
 
 Image fill_atlas(const Scene& scene, const Solution& solution, const raytrace::EmbreeScene& rt,
                  const RadiosityMesh& sources, const lightmap::Charts& charts,

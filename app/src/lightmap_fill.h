@@ -4,6 +4,8 @@
 // sample (as sensors gather it) and the solution's indirect light interpolated there.
 // docs/lightmaps.md describes the method.
 
+#include <optional>
+
 #include "app/lightmap.h"
 #include "core/context.h"
 #include "core/image.h"
@@ -20,6 +22,23 @@ namespace penumbra::app {
 /// sub-squares (lightmap::texel_samples), so that a texel is its footprint's box-filtered mean
 /// and a shadow edge crossing it lands in one of four levels between its sides.
 inline constexpr int k_texel_samples_per_axis = 3;
+
+/// \brief A texel sample found on the radiosity mesh.
+struct MeshSample {
+    Vec3 gather_point; ///< where its direct light is gathered: 10 ray offsets inside its element
+    Rgb indirect;      ///< the solution's indirect irradiance at the sample, W/m²
+};
+
+/// \brief How far above a sample its element ray starts: 10 of the solver's ray offsets
+///        (10⁻⁴ of the scene's diagonal).
+double probe_height(const RadiosityMesh& mesh);
+
+/// \brief The element under sample \p s, found by a short ray down its normal from \p height
+///        above it; nothing unless that element belongs to \p polygon's front side (else the
+///        sample lies on a hidden or covered part, where the mesher made no elements).
+std::optional<MeshSample> locate_sample(const raytrace::EmbreeScene& rt, const Solution& solution,
+                                        const lightmap::SurfacePoint& s, std::uint32_t polygon,
+                                        double height);
 
 /// \brief The irradiance atlas (W/m², RGB, linear) of \p texels: every covered texel the mean
 ///        over its k_texel_samples_per_axis² samples that lie on an element of their own

@@ -18,6 +18,7 @@
 #include "app/annual.h"
 #include "app/lightmap.h"
 #include "app/pipeline.h"
+#include "app/probes.h"
 #include "cli_checks.h"
 #include "core/error.h"
 #include "core/files.h"
@@ -104,6 +105,8 @@ struct LightmapFlags {
     std::optional<int> atlas_size;
     std::optional<int> padding;
     bool float_exr = false;
+    bool directional = false;
+    bool no_seam_stitch = false;
 };
 
 Context make_context(const CommonFlags& flags) {
@@ -197,6 +200,8 @@ app::LightmapOptions lightmap_options(const Scene& scene, const LightmapFlags& f
     options.atlas.size = flags.atlas_size.value_or(options.atlas.size);
     options.atlas.padding = flags.padding.value_or(options.atlas.padding);
     options.exr = flags.float_exr ? ExrPixels::float32 : ExrPixels::half;
+    options.directional = flags.directional || (scene.lightmap && scene.lightmap->directional);
+    options.stitch_seams = !flags.no_seam_stitch;
     return options;
 }
 
@@ -208,6 +213,21 @@ void log_lightmaps(const Context& ctx, const std::string& output, const app::Lig
              "{} of them hidden; {} rays",
              output, r.charts.charts.size(), r.atlases.size(), r.layout.size, coverage,
              r.counts.texels, r.counts.hidden_texels, r.rays);
+    ctx.info("stitched {} seam edges ({} samples, {} texels): seam error mean {:.4g}, max "
+             "{:.4g} W/m² before; mean {:.4g}, max {:.4g} W/m² after",
+             r.seams.edges, r.seams.samples, r.seams.texels, r.seams.before.mean,
+             r.seams.before.max, r.seams.after.mean, r.seams.after.max);
+}
+
+// The scene's `probes`, when it has them, from \p baked into \p output.
+void write_scene_probes(const Context& ctx, const Scene& scene, const app::BakeResult& baked,
+                        const std::string& output) {
+    if (!scene.probes)
+        return;
+    const app::ProbeResult probes = app::compute_probes(scene, *scene.probes, baked, ctx);
+    app::write_probes(output, scene, probes);
+    ctx.info("wrote {} light probes to {} (probes.json, probes.vtp): {} rays each, {:.2f} s",
+             probes.probes.size(), output, probes.rays_per_probe, probes.seconds);
 }
 
 int run_bake(const BakeFlags& flags, const CommonFlags& common) {
@@ -245,6 +265,7 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
         app::write_lightmaps(flags.output, scene, lightmap, *lightmaps);
         log_lightmaps(ctx, flags.output, *lightmaps);
     }
+    write_scene_probes(ctx, scene, result, flags.output);
     return k_ok;
 }
 
@@ -302,6 +323,7 @@ int run_lightmap(const LightmapFlags& flags, const CommonFlags& common) {
     app::fill_lightmaps(scene, baked, result, ctx);
     app::write_lightmaps(flags.scene.output, scene, options, result);
     log_lightmaps(ctx, flags.scene.output, result);
+    write_scene_probes(ctx, scene, baked, flags.scene.output);
     return k_ok;
 }
 
@@ -489,6 +511,13 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 4096));
     lightmap_cmd->add_flag("--float", lightmap.float_exr,
                            "32-bit float EXR channels (default: half)");
+    lightmap_cmd->add_flag("--directional", lightmap.directional,
+                           "also the L1 spherical harmonics of the incident radiance: "
+                           "lightmap_N_L00/L1m1/L10/L11.exr (default: the scene's "
+                           "lightmap.directional)");
+    lightmap_cmd->add_flag("--no-seam-stitch", lightmap.no_seam_stitch,
+                           "leave the seams between charts as filled (the error is still "
+                           "reported)");
     add_common_flags(*lightmap_cmd, common);
     std::string validate_scene_path;
     auto* validate_cmd = cli.add_subcommand("validate", "load and check a scene, write nothing");

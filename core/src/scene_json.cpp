@@ -1021,11 +1021,45 @@ void parse_render(const Field& root, Scene& scene) {
 }
 
 LightmapSettings parse_lightmap(const Field& field) {
-    field.expect_keys({"size"});
+    field.expect_keys({"size", "directional"});
     LightmapSettings lightmap;
     if (field.has("size"))
         lightmap.atlas_size = int(field.child("size").integer(16, 16384));
+    if (field.has("directional"))
+        lightmap.directional = field.child("directional").boolean();
     return lightmap;
+}
+
+// "probes": {"points": [[x, y, z], ...], "grid": {"min": [...], "max": [...], "spacing": s},
+// "rays": n}: at least one point or a grid; at most 10⁶ probes in all.
+ProbeSettings parse_probes(const Field& field, double metres_per_unit) {
+    field.expect_keys({"points", "grid", "rays"});
+    ProbeSettings probes;
+    if (field.has("points")) {
+        const Field points = field.child("points");
+        for (std::size_t i = 0; i < points.array_size(); ++i)
+            probes.points.push_back(points.element(i).vec3() * metres_per_unit);
+    }
+    if (field.has("grid")) {
+        const Field grid = field.child("grid");
+        grid.expect_keys({"min", "max", "spacing"});
+        ProbeGrid g;
+        g.min = grid.required("min").vec3() * metres_per_unit;
+        g.max = grid.required("max").vec3() * metres_per_unit;
+        g.spacing_m = length_m(grid.required("spacing"), metres_per_unit, true);
+        if (!(g.min.x <= g.max.x && g.min.y <= g.max.y && g.min.z <= g.max.z))
+            grid.child("max").fail("must be >= min on every axis");
+        const std::array<int, 3> n = g.counts();
+        if (double(n[0]) * n[1] * n[2] > 1e6)
+            grid.child("spacing").fail(
+                fmt::format("gives {} x {} x {} probes, more than 10^6", n[0], n[1], n[2]));
+        probes.grid = g;
+    }
+    if (field.has("rays"))
+        probes.rays = int(field.child("rays").integer(16, 1 << 20));
+    if (probes.points.empty() && !probes.grid)
+        field.fail("needs 'points' or a 'grid'");
+    return probes;
 }
 
 Rgb parse_background(const Field& field) {
@@ -1109,6 +1143,8 @@ void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
         scene.lightmap = parse_lightmap(root.child("lightmap"));
     if (root.has("annual"))
         parse_annual(root.child("annual"), spec);
+    if (root.has("probes"))
+        scene.probes = parse_probes(root.child("probes"), scale);
     if (root.has("background")) {
         if (root.has("sky"))
             root.child("background")
@@ -1128,7 +1164,7 @@ SceneSpec parse_scene_json(const std::string& text, const std::string& file_name
                       "site",           "sky",       "sensors",      "grids",
                       "camera",         "image",     "mesher",       "solver",
                       "render",         "lightmap",  "background",   "emission_two_sided",
-                      "smooth_objects", "annual"});
+                      "smooth_objects", "annual",    "probes"});
     SceneSpec spec;
     spec.scene.file = file_name;
     if (root.has("name"))

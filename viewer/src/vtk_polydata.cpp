@@ -21,6 +21,7 @@
 #include <vtkStringArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 #include <variant>
@@ -81,6 +82,37 @@ void write_sensors_vtp(const std::string& path, const Scene& scene,
                      {"irradiance_total", "W/m²"},
                      {"illuminance_direct_lx", "lx"},
                      {"illuminance_total_lx", "lx"}});
+    write_polydata(path, data);
+}
+
+void write_points_vtp(const std::string& path, const std::vector<Vec3>& points,
+                      const std::vector<PointArray>& arrays) {
+    vtkNew<vtkPoints> vtk_points;
+    vtk_points->SetDataTypeToDouble();
+    vtkNew<vtkCellArray> vertices;
+    for (const Vec3& p : points) {
+        const vtkIdType id = vtk_points->InsertNextPoint(p.x, p.y, p.z);
+        vertices->InsertNextCell(1, &id);
+    }
+    vtkNew<vtkPolyData> data;
+    data->SetPoints(vtk_points);
+    data->SetVerts(vertices);
+    std::vector<std::pair<std::string, std::string>> units;
+    for (const PointArray& a : arrays) {
+        if (a.values.size() != points.size() * std::size_t(a.components))
+            throw InternalError(fmt::format("write_points_vtp: array '{}' has {} values for {} "
+                                            "points of {} components",
+                                            a.name, a.values.size(), points.size(), a.components));
+        vtkNew<vtkDoubleArray> array;
+        array->SetName(a.name.c_str());
+        array->SetNumberOfComponents(a.components);
+        array->SetNumberOfTuples(vtkIdType(points.size()));
+        std::copy(a.values.begin(), a.values.end(), array->GetPointer(0));
+        data->GetPointData()->AddArray(array);
+        if (!a.unit.empty())
+            units.emplace_back(a.name, a.unit);
+    }
+    add_units(data, units);
     write_polydata(path, data);
 }
 

@@ -5,6 +5,7 @@
 // lightmaps on TEXCOORD_1 (MOZ_lightmap), the camera's preview and a JSON manifest.
 // docs/lightmaps.md describes the method.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -16,6 +17,7 @@
 #include "core/scene.h"
 #include "lightmap/atlas.h"
 #include "lightmap/charts.h"
+#include "lightmap/seams.h"
 #include "lightmap/texels.h"
 
 namespace penumbra::app {
@@ -24,6 +26,11 @@ namespace penumbra::app {
 struct LightmapOptions {
     lightmap::AtlasSettings atlas; ///< density, atlas size, padding
     ExrPixels exr = ExrPixels::half;
+    /// Also the L1 spherical harmonics of the incident radiance per texel (four more atlases
+    /// each: lightmap_N_L00, _L1m1, _L10, _L11; docs/lightmaps.md).
+    bool directional = false;
+    /// Stitch the seams between charts after dilation (lightmap/seams.h).
+    bool stitch_seams = true;
 };
 
 /// \brief What filling found, summed over the atlases.
@@ -44,7 +51,13 @@ struct LightmapResult {
     /// The scene camera's view shaded only from the atlases (radiance W/(sr·m²)), as an engine
     /// shows the bake; none without a camera (docs/lightmaps.md, "Preview").
     std::optional<Image> preview;
+    /// With LightmapOptions::directional: per atlas the images of L00, L1−1, L10 and L11
+    /// (lightmap/sh.h's order, world axes, W/(sr·m²) × sr^½ per channel).
+    std::vector<std::array<Image, 4>> directional;
+    LightmapOptions options; ///< as plan_lightmaps was given them, for fill_lightmaps
     LightmapCounts counts;
+    /// The irradiance atlases' seams, stitched after dilation (LightmapOptions::stitch_seams).
+    lightmap::SeamStitch seams;
     int samples_per_texel = 0;    ///< footprint samples of a texel that lies wholly on its chart
     std::vector<StageTime> times; ///< charts, packing, texels, bake (all its stages), fill
     std::uint64_t rays = 0;       ///< traced by the fill

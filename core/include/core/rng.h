@@ -22,6 +22,8 @@ enum class RngPurpose : std::uint64_t {
     exact_visibility = 10,
     sky_visibility = 11,
     texel_visibility = 12, ///< lightmap texel samples (issue #29)
+    probe_directions = 13, ///< light probes' gather rays (issue #29)
+    texel_gather = 14,     ///< directional lightmaps' gather rays (issue #29)
 };
 
 /// SplitMix64 finaliser: a strong 64-bit mix.

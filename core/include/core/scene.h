@@ -213,7 +213,27 @@ struct RenderSettings {
 
 /// \brief Lightmap baking (scene key `lightmap`, issue #29).
 struct LightmapSettings {
-    int atlas_size = 1024; ///< texels along each side of an atlas
+    int atlas_size = 1024;    ///< texels along each side of an atlas
+    bool directional = false; ///< also the L1 SH atlases of incident radiance
+};
+
+/// \brief A box lattice of light probes (scene key `probes.grid`): along each axis
+///        floor(extent / spacing) + 1 points spacing_m apart, centred in the box.
+struct ProbeGrid {
+    Vec3 min, max;                     ///< corners of the box, metres (min ≤ max per axis)
+    double spacing_m = 1;              ///< > 0
+    std::array<int, 3> counts() const; ///< points along x, y and z
+    std::vector<Vec3> points() const;  ///< x fastest, then y, then z
+};
+
+/// \brief Light probes (scene key `probes`, issue #29): L2 SH irradiance at given points
+///        and over a grid, written by `penumbra lightmap` and `bake`.
+struct ProbeSettings {
+    std::vector<Vec3> points; ///< metres
+    std::optional<ProbeGrid> grid;
+    int rays = 1024; ///< gather rays per probe over the sphere
+    /// The points, then the grid's lattice points.
+    std::vector<Vec3> positions() const;
 };
 
 /// \brief Settings of `penumbra annual` (scene key `annual`, issue #31).
@@ -241,6 +261,7 @@ struct Scene {
     RenderSettings render;
     std::optional<LightmapSettings> lightmap; ///< set: `bake` writes lightmaps
     AnnualSettings annual;
+    std::optional<ProbeSettings> probes; ///< set: `lightmap` and `bake` write light probes
     /// Radiance W/(sr·m²) that the renderer's rays see where they leave the scene; it lights
     /// nothing (the solver does not see it: give a `sky` for light from all around).
     Rgb background;

@@ -72,6 +72,20 @@ struct GridPointArray {
 void write_grid_arrays_vtp(const std::string& path, const Scene& scene, const SensorGrid& grid,
                            const std::vector<GridPointArray>& arrays);
 
+/// \brief An array of point data with \p components values per point (point-major), and
+///        its unit ("" for none).
+struct PointArray {
+    std::string name;
+    std::string unit;
+    int components = 1;
+    std::vector<double> values;
+};
+
+/// \brief Writes \p points as a .vtp of vertices with the point data \p arrays (light
+///        probes, issue #29). \throws InternalError for an array of the wrong size.
+void write_points_vtp(const std::string& path, const std::vector<Vec3>& points,
+                      const std::vector<PointArray>& arrays);
+
 /// \brief Writes the discontinuity segments of \p mesh as a .vtp of lines with cell data
 ///        order, source and surface (see DiscontinuitySegment). source is the emitting
 ///        polygon's index for an area source, −1 for the sun and −2 − i for point light i.

@@ -16,7 +16,7 @@ namespace penumbra {
 namespace {
 
 TEST(LightmapSeams, CornellSeamsCloseAndOtherTexelsStayPut) {
-    Scene scene = test::cornell_box(0.15);
+    Scene scene = test::cornell_box(0.3);
     scene.solver.method = SolverMethod::shooting; // fast; the solution's accuracy is not tested
     app::LightmapOptions options;
     options.atlas.texels_per_metre = 60;

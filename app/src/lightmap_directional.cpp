@@ -13,7 +13,6 @@
 
 namespace penumbra::app {
 
-using lightmap::AtlasTexels;
 using lightmap::ShL2;
 using lightmap::Texel;
 

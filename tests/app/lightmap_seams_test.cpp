@@ -16,7 +16,8 @@ namespace penumbra {
 namespace {
 
 TEST(LightmapSeams, CornellSeamsCloseAndOtherTexelsStayPut) {
-    const Scene scene = test::cornell_box(0.15);
+    Scene scene = test::cornell_box(0.3);
+    scene.solver.method = SolverMethod::shooting; // fast; the solution's accuracy is not tested
     app::LightmapOptions options;
     options.atlas.texels_per_metre = 60;
     options.atlas.size = 256;
@@ -30,8 +31,9 @@ TEST(LightmapSeams, CornellSeamsCloseAndOtherTexelsStayPut) {
     EXPECT_EQ(seams.edges, 24u);
     std::vector<Image> stitched = r.atlases;
     const lightmap::SeamStitch s = lightmap::stitch_seams(stitched, seams, 10);
-    // Seam error, W/m² (largest channel); measured: mean 0.41, max 4.3 before (under the
-    // lamp the ceiling's and the walls' irradiance differ most), 0.002 and 0.09 after.
+    // Seam error, W/m² (largest channel); measured with the hierarchical solve: mean 0.41,
+    // max 4.3 before (under the lamp the ceiling's and the walls' irradiance differ most),
+    // 0.002 and 0.09 after (docs/lightmaps.md).
     EXPECT_GT(s.before.mean, 0.02);
     EXPECT_LT(s.after.mean, 0.01 * s.before.mean);
     EXPECT_LT(s.after.max, 0.05 * s.before.max); // where three charts meet at a block's corner

@@ -509,9 +509,9 @@ TEST(CliDaylight, SunlitWorkPlane) {
     fs::remove_all(dir);
 }
 
-// `annual` on an unobstructed black floor under Chicago's year: every output file, one row
-// per sensor, the hourly values' size; bad flags and files are one-line errors that leave no
-// output folder.
+// `annual` on an unobstructed black floor under Chicago's year: every output file (the mesh's
+// too), one row per sensor, the hourly values' size; bad flags and files (--blinds without
+// the scene's shaded state) are one-line errors that leave no output folder.
 TEST(CliAnnual, OutputsAndBadInput) {
     const fs::path dir = test::temp_dir("cli-annual");
     write(dir / "floor.json", R"({
@@ -525,10 +525,10 @@ TEST(CliAnnual, OutputsAndBadInput) {
     const std::string scene = (dir / "floor.json").string();
     const fs::path out = dir / "out";
     const RunResult r = run_cli("annual " + scene + " --weather " + weather + " -o " +
-                                out.string() + " --hourly -q");
+                                out.string() + " --hourly --mesh -q");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* f : {"annual.csv", "summary.json", "annual_wp_da.png", "annual_wp.vtp",
-                          "hourly_illuminance.f32", "hourly_illuminance.json"})
+                          "hourly_illuminance.f32", "hourly_illuminance.json", "annual_mesh.vtu"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     std::ifstream csv(out / "annual.csv");
     std::string line;
@@ -549,6 +549,7 @@ TEST(CliAnnual, OutputsAndBadInput) {
         {"annual " + scene + " --weather " + weather + " --occupancy 18-8", 3, "--occupancy"},
         {"annual " + scene + " --weather " + weather + " --heat-map nosuch", 3, "nosuch"},
         {"annual " + scene + " --weather " + weather + " --patches 7", 3, "--patches"},
+        {"annual " + scene + " --weather " + weather + " --blinds", 2, "annual.blinds"},
     };
     for (const Bad& b : bad) {
         const fs::path fresh = dir / "fresh";

@@ -86,6 +86,7 @@ TEST(GlazingUnderSky, PaneScalesAUniformSkyByItsHemisphericalTransmittance) {
     Scene scene;
     auto black = add_material(scene, "black", Rgb(0), {}, false);
     const auto glass_id = test::add_clear_glass(scene); // 0.620 hemispherically
+    const ThinGlass pane = *glazing_of(scene.materials[glass_id]);
     add_rect(scene, "floor", black, {-1, -1, 0}, {2, 0, 0}, {0, 2, 0});
     add_rect(scene, "pane", glass_id, {-10, -10, 0.05}, {20, 0, 0}, {0, 20, 0});
     scene.sky = Sky{};

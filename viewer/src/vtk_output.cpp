@@ -223,10 +223,7 @@ void write_cell_arrays_vtu(const std::string& path, const Scene& scene, const Ra
     add_cell_patch_arrays(grid->GetCellData(), mesh);
     add_field<vtkStringArray>(grid->GetFieldData(), "scene_name", scene.name);
     add_units(grid, units);
-    write_atomically(path, [&](const std::string& temp) {
-        vtkNew<vtkXMLUnstructuredGridWriter> writer;
-        write_xml(writer, grid, temp, path);
-    });
+    write_xml_file<vtkXMLUnstructuredGridWriter>(grid, path);
 }
 
 } // namespace penumbra::viewer

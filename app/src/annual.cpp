@@ -6,6 +6,7 @@
 
 #include "annual_outputs.h"
 #include "core/error.h"
+#include "memory_checks.h"
 
 #include "mesher/mesher.h"
 #include "raytrace/raytrace.h"
@@ -96,6 +97,7 @@ AnnualResult run_annual(const Scene& scene, const AnnualOptions& options, const 
     const Scene lit = solver::coefficient_scene(scene); // the weather brings sky and sun
     const annual::SkyPatches patches(options.subdivision, lit.sky->compass);
     r.patches = patches.size();
+    check_hourly_memory(scene.sensors.size(), patches.size(), r.weather.hours.size(), ctx);
     const auto ts = std::chrono::steady_clock::now();
     const annual::SkyMatrix matrix = annual::sky_matrix(r.weather, patches, options.sky, ctx);
     const double sky_seconds = seconds_since(ts);
@@ -106,6 +108,8 @@ AnnualResult run_annual(const Scene& scene, const AnnualOptions& options, const 
         scene.sun ? scene.sun->angular_diameter_deg : Sun{}.angular_diameter_deg;
     const auto t0 = std::chrono::steady_clock::now();
     const RadiosityMesh mesh = mesher::build_mesh(lit, ctx);
+    check_coefficient_memory(mesh.element_count(), scene.sensors.size(), patches.size(),
+                             suns.directions.size(), ctx);
     const raytrace::EmbreeScene embree(mesh);
     const solver::PatchBinning binning = patch_binning(patches);
     r.coefficients =

@@ -7,6 +7,7 @@
 #include "annual_mesh.h"
 #include "annual_outputs.h"
 #include "core/error.h"
+#include "memory_checks.h"
 
 #include "mesher/mesher.h"
 #include "raytrace/raytrace.h"
@@ -109,6 +110,10 @@ StateYear state_year(const Scene& lit, const annual::SkyPatches& patches, const 
                      solver::CoefficientTargets targets, const std::string& prefix,
                      Stopwatch& clock, const Context& ctx) {
     const RadiosityMesh mesh = mesher::build_mesh(lit, ctx);
+    const std::size_t elements =
+        targets == solver::CoefficientTargets::with_elements ? mesh.element_count() : 0;
+    check_coefficient_memory(mesh.element_count(), lit.sensors.size() + elements, patches.size(),
+                             year.suns.directions.size(), ctx);
     const raytrace::EmbreeScene embree(mesh);
     clock.lap(prefix + "mesh");
     StateYear s;
@@ -226,6 +231,7 @@ AnnualResult run_annual(const Scene& scene, const AnnualOptions& options, const 
     const Scene lit = solver::coefficient_scene(scene); // the weather brings sky and sun
     const annual::SkyPatches patches(options.subdivision, lit.sky->compass);
     r.patches = patches.size();
+    check_hourly_memory(scene.sensors.size(), patches.size(), r.weather.hours.size(), ctx);
     const annual::SkyMatrix matrix = annual::sky_matrix(r.weather, patches, options.sky, ctx);
     const SunBins suns =
         bin_suns(matrix, annual::SkyPatches(options.sun_subdivision, patches.compass()));

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "core/memory.h"
 
 namespace penumbra::app {
 
@@ -50,6 +51,17 @@ CLI::Validator number_in(double lo, double hi) {
                                excerpt(text, k_echo_chars));
         },
         fmt::format("NUMBER in [{:g}, {:g}]", lo, hi));
+}
+
+CLI::Validator memory_size() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            if (parse_memory_size(text))
+                return {};
+            return fmt::format("expected a size such as 4G, 500M or 0 (no limit), got '{}'",
+                               excerpt(text, k_echo_chars));
+        },
+        "SIZE");
 }
 
 std::string cli_error_line(const CLI::ParseError& error) {

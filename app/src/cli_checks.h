@@ -13,6 +13,9 @@ CLI::Validator positive_number();
 /// \brief A finite number in [\p lo, \p hi].
 CLI::Validator number_in(double lo, double hi);
 
+/// \brief A memory size as core/memory.h's parse_memory_size() reads it ("4G", "500M").
+CLI::Validator memory_size();
+
 /// \brief The one line `penumbra: error: …` a command-line mistake prints.
 std::string cli_error_line(const CLI::ParseError& error);
 

@@ -6,6 +6,7 @@
 #include "lightmap_directional.h"
 #include "lightmap_fill.h"
 #include "lightmap_preview.h"
+#include "memory_checks.h"
 
 #include <algorithm>
 #include <chrono>
@@ -46,8 +47,10 @@ LightmapResult plan_lightmaps(const Scene& scene, const LightmapOptions& options
     LightmapResult r;
     r.charts = timed(r.times, "charts",
                      [&] { return lightmap::build_charts(scene, lightmap::ChartSettings{}, ctx); });
+    check_lightmap_charts(r.charts, options.atlas, ctx);
     r.layout = timed(r.times, "packing",
                      [&] { return lightmap::pack_atlases(r.charts, options.atlas, ctx); });
+    check_lightmap_memory(r.layout, ctx);
     r.texels =
         timed(r.times, "texels", [&] { return lightmap::rasterize(r.charts, r.layout, ctx); });
     r.samples_per_texel = k_texel_samples_per_axis * k_texel_samples_per_axis;

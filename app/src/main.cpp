@@ -22,6 +22,7 @@
 #include "cli_checks.h"
 #include "core/error.h"
 #include "core/files.h"
+#include "core/memory.h"
 #include "core/scene_io.h"
 #include "terminal.h"
 
@@ -61,6 +62,7 @@ struct CommonFlags {
     std::uint64_t seed = 0;
     bool quiet = false;
     int verbose = 0;
+    std::string max_memory; ///< empty: default_memory_limit_bytes()
 };
 
 struct BakeFlags {
@@ -117,6 +119,9 @@ Context make_context(const CommonFlags& flags) {
     ctx.seed = flags.seed;
     ctx.min_level =
         flags.quiet ? LogLevel::warn : (flags.verbose > 0 ? LogLevel::debug : LogLevel::info);
+    // The flag's validator has read it already.
+    ctx.max_memory_bytes = flags.max_memory.empty() ? default_memory_limit_bytes()
+                                                    : *parse_memory_size(flags.max_memory);
     return ctx;
 }
 
@@ -126,6 +131,14 @@ void add_common_flags(CLI::App& cmd, CommonFlags& flags) {
     cmd.add_option("--seed", flags.seed, "master seed of all random streams");
     cmd.add_flag("-q,--quiet", flags.quiet, "only warnings and errors, no progress bars");
     cmd.add_flag("-v,--verbose", flags.verbose, "debug messages");
+}
+
+/// `--max-memory`, on the commands that solve.
+void add_memory_flag(CLI::App& cmd, CommonFlags& flags) {
+    cmd.add_option("--max-memory", flags.max_memory,
+                   "most memory the stages' estimates may reach, e.g. 4G or 500M (powers of "
+                   "1024; 0 = no limit; default 80 % of the machine's or the cgroup's memory)")
+        ->check(app::memory_size());
 }
 
 /// The scene with the solver and mesher flags of bake and daylight applied.
@@ -414,6 +427,7 @@ int main(int argc, char** argv) {
         ->add_option("--series", bake.series_every_shots,
                      "write the solution every K shots as series/mesh_*.vtu + series.pvd")
         ->check(app::positive_number());
+    add_memory_flag(*bake_cmd, common);
     add_common_flags(*bake_cmd, common);
     RenderFlags render;
     auto* render_cmd = cli.add_subcommand(
@@ -432,12 +446,14 @@ int main(int argc, char** argv) {
         ->add_option("--gather-depth", render.gather_depth,
                      "final: diffuse bounces traced before the solution is read (default 0)")
         ->check(CLI::Range(0, 64));
+    add_memory_flag(*render_cmd, common);
     add_common_flags(*render_cmd, common);
     BakeFlags daylight;
     auto* daylight_cmd = cli.add_subcommand(
         "daylight", "mesh, solve and write the daylight results of a scene with a sky or sun: "
                     "sensors.csv, the grids' statistics, plans and points, mesh.vtu");
     add_solve_flags(*daylight_cmd, daylight);
+    add_memory_flag(*daylight_cmd, common);
     add_common_flags(*daylight_cmd, common);
     AnnualFlags annual;
     auto* annual_cmd = cli.add_subcommand(
@@ -489,6 +505,7 @@ int main(int argc, char** argv) {
         ->add_option("--epsilon", annual.scene.epsilon,
                      "refinement threshold of the coefficients' links (overrides solver.epsilon)")
         ->check(app::number_in(1e-12, 1.0));
+    add_memory_flag(*annual_cmd, common);
     add_common_flags(*annual_cmd, common);
     LightmapFlags lightmap;
     auto* lightmap_cmd = cli.add_subcommand(
@@ -518,6 +535,7 @@ int main(int argc, char** argv) {
     lightmap_cmd->add_flag("--no-seam-stitch", lightmap.no_seam_stitch,
                            "leave the seams between charts as filled (the error is still "
                            "reported)");
+    add_memory_flag(*lightmap_cmd, common);
     add_common_flags(*lightmap_cmd, common);
     std::string validate_scene_path;
     auto* validate_cmd = cli.add_subcommand("validate", "load and check a scene, write nothing");

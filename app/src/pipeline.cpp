@@ -1,5 +1,6 @@
 #include "app/pipeline.h"
 
+#include "memory_checks.h"
 #include "outputs.h"
 
 #include <algorithm>
@@ -45,6 +46,8 @@ raytrace::RenderOptions default_render_options(const Scene& scene) {
 
 BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& ctx) {
     BakeResult result;
+    if (options.render)
+        check_render_memory(scene, ctx); // before the solve, which would take long
     {
         StageTimer t(result.times, "mesh");
         result.mesh = mesher::build_mesh(scene, ctx);

@@ -13,6 +13,7 @@
 
 #include "contacts.h"
 #include "core/error.h"
+#include "core/memory.h"
 #include "core/parallel.h"
 #include "discontinuity.h"
 #include "mesh_assembly.h"
@@ -21,8 +22,6 @@
 #include "surfaces.h"
 
 namespace penumbra::mesher {
-
-namespace {
 
 MeshParams resolve_params(const Scene& scene) {
     const MesherSettings& m = scene.mesher;
@@ -41,6 +40,8 @@ MeshParams resolve_params(const Scene& scene) {
     p.budget = m.element_budget;
     return p;
 }
+
+namespace {
 
 // max_edge_length is the element size: no edge is longer than the diagonal of a square of
 // that side, as in mesher v1's structured grids, so element counts stay comparable.
@@ -112,16 +113,6 @@ std::size_t element_count(const std::vector<SurfaceTriangulation>& tris) {
 constexpr double k_budget_refused = 100.0;
 constexpr double k_budget_grown = 2.0;
 
-// About the elements a size bound makes: two triangles per square of its side on every side
-// of every surface (Delaunay refinement makes somewhat fewer; contacts and shadow boundaries
-// add some).
-double estimated_elements(const std::vector<Surface>& surfaces, double max_edge) {
-    double n = 0;
-    for (const Surface& s : surfaces)
-        n += (s.two_sided ? 2.0 : 1.0) * 2.0 * s.area / (max_edge * max_edge);
-    return n;
-}
-
 // The size bound to mesh with, decided before meshing: meshing first took minutes and
 // gigabytes (--max-edge 1e-6) before the budget was looked at. Near the budget,
 // refine_within_budget grows it further if the mesh comes out over.
@@ -146,6 +137,23 @@ double size_within_budget(const std::vector<Surface>& surfaces, const MeshParams
 // A point light on a surface (within the contact tolerance of it) loses the light it sends
 // into that surface's plane, and half of it or all to the surface itself, without a word
 // (a relative imbalance of 0.93 was measured): it is an input error naming the light.
+// The mesh's memory, estimated before meshing (docs/memory.md): with mesher.element_budget
+// 0 nothing else bounds the elements of a tiny --max-edge.
+void check_mesh_memory(const std::vector<Surface>& surfaces, double max_edge,
+                       const std::string& scene_file, const Context& ctx) {
+    const double elements = k_elements_per_estimate * estimated_elements(surfaces, max_edge);
+    const double bytes =
+        elements * double(k_mesh_bytes_per_element + k_triangulation_bytes_per_element);
+    if (ctx.max_memory_bytes == 0 || bytes <= double(ctx.max_memory_bytes))
+        return;
+    const double fits = max_edge * std::sqrt(bytes / double(ctx.max_memory_bytes));
+    check_memory(ctx,
+                 fmt::format("{}: meshing with elements of {:.4g} m (up to {:.3g} elements)",
+                             scene_file, max_edge, elements),
+                 bytes,
+                 fmt::format("use --max-edge {:.2g} or more (mesher.max_edge_length)", fits));
+}
+
 void check_point_lights_off_surfaces(const Scene& scene, const std::vector<Surface>& surfaces,
                                      const MeshParams& params) {
     for (std::size_t i = 0; i < scene.point_lights.size(); ++i) {
@@ -246,6 +254,7 @@ RadiosityMesh build_mesh(const Scene& scene, const Context& ctx) {
     const std::vector<Surface> surfaces = build_surfaces(scene, params, ctx);
     check_point_lights_off_surfaces(scene, surfaces, params);
     double max_edge = size_within_budget(surfaces, params, scene.file, ctx);
+    check_mesh_memory(surfaces, max_edge, scene.file, ctx);
     timer.lap("surfaces");
     const SurfaceBvh bvh(surfaces);
     timer.lap("surface bvh");

@@ -260,4 +260,11 @@ std::vector<Surface> build_surfaces(const Scene& scene, const MeshParams& params
     return surfaces;
 }
 
+double estimated_elements(const std::vector<Surface>& surfaces, double max_edge) {
+    double n = 0;
+    for (const Surface& s : surfaces)
+        n += (s.two_sided ? 2.0 : 1.0) * 2.0 * s.area / (max_edge * max_edge);
+    return n;
+}
+
 } // namespace penumbra::mesher

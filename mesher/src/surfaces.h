@@ -58,6 +58,19 @@ Vec3 newell_normal(const std::vector<Vec3>& outline);
 /// Builds a surface from a planar outline; returns false for a zero-area outline.
 bool make_surface(const std::vector<Vec3>& outline, Surface& out);
 
+/// \p scene's mesher settings resolved to metres (mesher.cpp).
+MeshParams resolve_params(const Scene& scene);
+
+/// About the elements a size bound makes: two triangles per square of its side on every side
+/// of every surface. Delaunay refinement makes fewer on open surfaces; contacts and shadow
+/// boundaries add more, most at coarse sizes (the Cornell box meshes into 3.7 times the
+/// estimate at 0.1 m, 1.5 times at 0.025 m, 1.2 times at 0.005 m).
+double estimated_elements(const std::vector<Surface>& surfaces, double max_edge);
+
+/// The memory estimate counts this many elements per estimated_elements(): a bound for the
+/// Cornell box at every size (tests/mesher/memory_estimate_test.cpp).
+inline constexpr double k_elements_per_estimate = 4.0;
+
 /// The planar surfaces of \p scene, near-contacts closed when params.split_contacts.
 /// Polygons that degenerate to zero area are skipped with a warning naming them.
 std::vector<Surface> build_surfaces(const Scene& scene, const MeshParams& params,

@@ -111,6 +111,7 @@ RefineSettings refine_settings(const Scene& scene, const RadiosityMesh& mesh, co
     rs.rows.seed = ctx.seed;
     rs.rows.apart_quadrature_level = k_apart_level;
     rs.offset = 1e-5 * std::max(mesh.scene_diagonal, 1e-3);
+    rs.max_memory_bytes = ctx.max_memory_bytes;
     rs.min_area = scene.solver.min_area > 0 ? scene.solver.min_area
                                             : std::pow(mesh.scene_diagonal / 200.0, 2);
     check_min_area(scene, mesh, rs.min_area);

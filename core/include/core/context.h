@@ -44,6 +44,8 @@ struct Context {
     int threads = 0;                        ///< 0 = all hardware threads
     std::uint64_t seed = 0;                 ///< master seed of every random stream
     LogLevel min_level = LogLevel::info;
+    /// The most the stages' memory estimates may reach (core/memory.h), bytes; 0 = no limit.
+    std::uint64_t max_memory_bytes = 0;
 
     template <typename... Args>
     void log_at(LogLevel level, fmt::format_string<Args...> f, Args&&... args) const {

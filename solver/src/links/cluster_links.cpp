@@ -603,6 +603,8 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
             break;
         }
     }
+    check_growth(links_.size(), kept + cluster_pairs.size(),
+                 "a refinement pass of the cluster links");
     cluster_links_.resize(kept + cluster_pairs.size());
     const std::vector<std::uint32_t> reverse = exact_reverses(cluster_pairs);
     parallel_for_index(cluster_pairs.size(), 16, [&](std::size_t i) {

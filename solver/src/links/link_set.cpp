@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <span>
 #include <tuple>
 #include <variant>
@@ -187,8 +188,34 @@ bool LinkSet::linkable(std::uint32_t q, std::uint32_t p) const {
            faces(h_, q, p, 1e-9 * h_.diagonal);
 }
 
+void LinkSet::check_growth(std::size_t element_links, std::size_t cluster_links, const char* when,
+                           std::string_view advice) const {
+    check_system_memory(settings_.max_memory_bytes,
+                        {h_.size(), element_links, cluster_links, light_links_.size()}, when,
+                        advice);
+}
+
+// Every pair of r roots may be linked: when r² links would not fit, they are counted first
+// (a second pass of the cheap tests), so that a mesh far too large to link without clusters
+// is refused before its links are made.
+void LinkSet::check_root_links() const {
+    const std::size_t r = h_.root_count;
+    if (settings_.max_memory_bytes == 0 ||
+        system_bytes({h_.size(), r * r, 0, 0}) <= double(settings_.max_memory_bytes))
+        return;
+    std::vector<std::size_t> count(r, 0);
+    parallel_for_index(r, 4, [&](std::size_t q) {
+        for (std::uint32_t p = 0; p < r; ++p)
+            count[q] += linkable(std::uint32_t(q), p) ? 1 : 0;
+    });
+    check_growth(std::accumulate(count.begin(), count.end(), std::size_t(0)), 0,
+                 "linking every pair of elements (without clusters)",
+                 "use --clustering on (solver.clustering) or a larger --max-edge");
+}
+
 void LinkSet::link_roots() {
     const std::size_t r = h_.root_count;
+    check_root_links();
     std::vector<std::vector<Link>> per_receiver(r);
     parallel_for_index(r, 4, [&](std::size_t q) {
         for (std::uint32_t p = 0; p < r; ++p)
@@ -279,6 +306,10 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
         if (decision[k] != keep)
             subdivide(decision[k] == split_receiver ? links_[k].receiver : links_[k].source, b,
                       b_range);
+    const auto split_count = std::size_t(
+        std::count_if(decision.begin(), decision.end(), [](std::uint8_t d) { return d != keep; }));
+    check_growth(links_.size() + 3 * split_count, cluster_links_.size(),
+                 "a refinement pass of the element links");
     // In place (the biggest refinements of a large scene make tens of millions of links):
     // the kept links move to the front, and the parts of the split links, made after, follow
     // them. A pair split both ways (each link splits its larger end) makes its parts' links

@@ -20,6 +20,7 @@
 #include "kernels/element_rows.h"
 #include "links/cluster_tables.h"
 #include "links/link_store.h"
+#include "memory/memory_use.h"
 #include "oracle/oracle.h"
 
 namespace penumbra::solver {
@@ -28,6 +29,9 @@ namespace penumbra::solver {
 struct RefineSettings : OracleSettings {
     RowSettings rows;
     double offset = 0;
+    /// The memory limit the system's nodes and links are checked against before each pass
+    /// makes its links (memory/memory_use.h), bytes; 0 = no limit.
+    std::uint64_t max_memory_bytes = 0;
 };
 
 /// What refine() reports after each of its passes (a pass refines every link once).
@@ -100,6 +104,14 @@ private:
     bool refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range);
     void sort_and_index() { store_.sort_and_index(h_.size(), tree_); }
     void link_lights();
+    /// Throws ConfigError if the nodes now and \p element_links and \p cluster_links links
+    /// would exceed settings_.max_memory_bytes; \p when names the step, \p advice the
+    /// settings to change.
+    void check_growth(std::size_t element_links, std::size_t cluster_links, const char* when,
+                      std::string_view advice = k_refinement_advice) const;
+    /// Refuses, before link_roots() makes them, links of every pair of roots that would not
+    /// fit the memory limit.
+    void check_root_links() const;
     /// Elements q and p may exchange light: distinct, not twins, p radiates, they face.
     bool linkable(std::uint32_t q, std::uint32_t p) const;
     // Clusters (links/cluster_links.cpp).

@@ -81,6 +81,7 @@ void expect_one_line_error(const std::string& path, std::vector<std::string> par
 TEST(SceneIo, LoadsCornellBox) {
     const Scene scene = load_scene(test::source_path("data/cornell/scene.json"));
     EXPECT_EQ(scene.name, "cornell-box");
+    EXPECT_EQ(scene.up.y, 1.0);            // "up": [0, 1, 0]
     ASSERT_EQ(scene.polygons.size(), 16u); // 5 walls, 5 + 5 block faces, 1 light
     for (const Polygon& polygon : scene.polygons)
         EXPECT_EQ(polygon.vertices.size(), 4u) << polygon.source;

@@ -25,6 +25,7 @@ PACKAGES=(
     libspdlog-dev libfmt-dev
     libpng-dev
     libstb-dev
+    libnanoflann-dev
     libgtest-dev libgmock-dev
     libbenchmark-dev
     xvfb xauth

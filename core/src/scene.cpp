@@ -1,5 +1,10 @@
 #include "core/scene.h"
 
+#include "core/error.h"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 namespace penumbra {
 
 BBox Scene::bounds() const {
@@ -24,6 +29,23 @@ bool Scene::has_emitter() const {
         if (!materials[poly.material].emission.is_black())
             return true;
     return false;
+}
+
+void Scene::select_camera(const std::string& camera_name) {
+    std::vector<std::string> names;
+    for (const NamedCamera& named : cameras) {
+        if (named.name == camera_name) {
+            camera = named.camera;
+            return;
+        }
+        names.push_back(named.name);
+    }
+    throw InputError(file, "cameras",
+                     names.empty() ? fmt::format("no camera named '{}': the scene has no "
+                                                 "'cameras'",
+                                                 camera_name)
+                                   : fmt::format("no camera named '{}' (known: {})", camera_name,
+                                                 fmt::join(names, ", ")));
 }
 
 } // namespace penumbra

@@ -22,6 +22,7 @@ enum class RngPurpose : std::uint64_t {
     exact_visibility = 10,
     sky_visibility = 11,
     texel_visibility = 12, ///< lightmap texel samples (issue #29)
+    caustic_photon = 13,   ///< caustic photons of the final gather (issue #28)
 };
 
 /// SplitMix64 finaliser: a strong 64-bit mix.

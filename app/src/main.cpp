@@ -433,14 +433,15 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0, 100'000'000));
     render_cmd
         ->add_option("--photon-radius", render.photon_radius_m,
-                     "final: radius of the caustic density estimate, metres (default: from the "
-                     "scene)")
+                     "final: a fixed radius of the caustic density estimate, metres (default: "
+                     "the 64 nearest photons')")
         ->check(app::positive_number());
     render_cmd->add_option("--camera", render.scene.camera,
                            "render the camera of the scene's 'cameras' with this name");
     render_cmd->add_option("--solution", render.solution,
                            "start from an earlier bake's solution (its folder or "
-                           "solver_state.bin): hierarchy and links are kept, not solved again");
+                           "solver_state.bin), as bake --reuse: its hierarchy and links are "
+                           "kept and the sweeps start from its radiosities");
     add_common_flags(*render_cmd, common);
     BakeFlags daylight;
     auto* daylight_cmd = cli.add_subcommand(

@@ -29,9 +29,8 @@ namespace {
 constexpr std::size_t k_batch = 8192;
 /// At most this many photons shot per photon asked for (scenes whose caustics are rare).
 constexpr std::uint64_t k_max_shot_per_stored = 64;
-/// Photons the density estimate's disc holds where the caustic is as spread as the
-/// specular surfaces' silhouettes (caustic_radius below).
-constexpr double k_photons_per_disc = 64;
+/// Largest radius of the nearest-photon estimate, relative to the scene's diagonal.
+constexpr double k_max_radius_of_diagonal = 0.05;
 /// Bounces after which Russian roulette may end a photon.
 constexpr int k_roulette_after = 3;
 
@@ -40,23 +39,19 @@ constexpr int k_roulette_after = 3;
 struct Target {
     Vec3 centre;
     double radius = 0;
-    double area_m2 = 0; ///< the surfaces' total area
 };
 
 std::optional<Target> specular_target(const RadiosityMesh& mesh, const Scene& scene) {
     BBox box;
-    double area = 0;
     for (std::uint32_t e = 0; e < mesh.element_count(); ++e) {
         if (!passes_photons(scene.materials[mesh.patch_of(e).material]))
             continue;
         for (std::uint32_t v : mesh.triangles[e])
             box.extend(mesh.vertex(v));
-        // Both sides of a two-sided surface are elements: count the surface once.
-        area += mesh.patch_of(e).back ? 0.0 : mesh.element_area[e];
     }
-    if (!(area > 0))
+    if (box.empty())
         return std::nullopt;
-    return Target{(box.lo + box.hi) * 0.5, 0.5 * length(box.hi - box.lo) * (1 + 1e-6), area};
+    return Target{(box.lo + box.hi) * 0.5, 0.5 * length(box.hi - box.lo) * (1 + 1e-6)};
 }
 
 /// One kind of source: the emitting elements, a point light, the sun, the sky.
@@ -267,16 +262,6 @@ std::optional<CausticPhoton> trace_photon(const EmbreeScene& rt, const SurfaceGe
     return std::nullopt;
 }
 
-/// The density estimate's radius: k_photons_per_disc photons in a disc where the stored
-/// photons spread evenly over a quarter of the specular area (a convex body's mean
-/// silhouette, Cauchy's formula: where a sphere's refracted or reflected light lands).
-double caustic_radius(const Scene& scene, const Target& target, std::size_t stored) {
-    if (scene.render.caustic_radius_m)
-        return *scene.render.caustic_radius_m;
-    const double area = 0.25 * target.area_m2;
-    return std::sqrt(k_photons_per_disc * area / (k_pi * double(std::max<std::size_t>(stored, 1))));
-}
-
 } // namespace
 
 CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene,
@@ -310,7 +295,9 @@ CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene,
     });
     for (CausticPhoton& photon : out.photons)
         photon.power_w = photon.power_w * float(1.0 / double(out.shot));
-    out.radius_m = caustic_radius(scene, *target, out.photons.size());
+    out.fixed_radius = scene.render.caustic_radius_m.has_value();
+    out.radius_m =
+        scene.render.caustic_radius_m.value_or(k_max_radius_of_diagonal * rt.mesh().scene_diagonal);
     ctx.debug("caustic photons: {} stored of {} shot, radius {:.4g} m", out.photons.size(),
               out.shot, out.radius_m);
     return out;

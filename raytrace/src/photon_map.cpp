@@ -1,11 +1,13 @@
-// The caustic map's kd-tree and density estimate (photon_map.h). nanoflann 1.4's radius
-// search takes the squared radius; its tree is built on one thread and searched read-only,
+// The caustic map's kd-tree and density estimate (photon_map.h). nanoflann 1.4's searches
+// take and return squared distances; its tree is built on one thread and searched read-only,
 // and the sum runs in the tree's fixed order, so estimates do not depend on the thread count.
 
 #include "photon_map.h"
 
 #include <nanoflann.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace penumbra::raytrace {
@@ -32,6 +34,19 @@ using KdTree = nanoflann::KDTreeSingleIndexAdaptor<
     nanoflann::L2_Simple_Adaptor<double, PhotonCloud, double, std::size_t>, PhotonCloud, 3,
     std::size_t>;
 
+/// Photons of the nearest-photon estimate (Jensen 1996 uses 50 to 100).
+constexpr std::size_t k_neighbours = 64;
+
+/// The reflected flux of one photon at \p s, if it landed on the same side of a surface
+/// facing the same way.
+RgbD reflected_flux(const CausticPhoton& photon, const Bsdf& bsdf, const SurfaceHit& s,
+                    const Vec3& wo) {
+    if (dot(photon.normal, s.normal) < k_min_normal_cos ||
+        !SurfaceGeometry::geometric_side_agrees(s, wo, photon.incoming, false))
+        return {};
+    return RgbD(bsdf.f(wo, photon.incoming) * photon.power_w);
+}
+
 /// A radius search's result set that sums the photons' reflected flux as it finds them.
 struct ReflectedFlux {
     const std::vector<CausticPhoton>& photons;
@@ -45,13 +60,8 @@ struct ReflectedFlux {
     bool full() const { return true; }
     double worstDist() const { return radius2; }
     bool addPoint(double dist2, std::size_t index) {
-        if (dist2 >= radius2)
-            return true;
-        const CausticPhoton& photon = photons[index];
-        if (dot(photon.normal, s.normal) < k_min_normal_cos ||
-            !SurfaceGeometry::geometric_side_agrees(s, wo, photon.incoming, false))
-            return true;
-        sum += RgbD(bsdf.f(wo, photon.incoming) * photon.power_w);
+        if (dist2 < radius2)
+            sum += reflected_flux(photons[index], bsdf, s, wo);
         return true;
     }
 };
@@ -79,12 +89,30 @@ bool CausticMap::empty() const {
 Rgb CausticMap::radiance(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo) const {
     if (!tree_)
         return {};
-    const double r = photons_.radius_m;
-    ReflectedFlux flux{photons_.photons, bsdf, s, wo, r * r, {}};
     const double query[3] = {s.p.x, s.p.y, s.p.z};
-    tree_->tree.radiusSearchCustomCallback(query, flux, nanoflann::SearchParams(32, 0, false));
-    const double scale = 1.0 / (k_pi * r * r);
-    return {float(flux.sum.r * scale), float(flux.sum.g * scale), float(flux.sum.b * scale)};
+    double r2 = photons_.radius_m * photons_.radius_m;
+    RgbD sum;
+    if (photons_.fixed_radius) {
+        ReflectedFlux flux{photons_.photons, bsdf, s, wo, r2, {}};
+        tree_->tree.radiusSearchCustomCallback(query, flux, nanoflann::SearchParams(32, 0, false));
+        sum = flux.sum;
+    } else {
+        // The disc that holds the nearest photons: small in a focused caustic, wide where the
+        // photons spread thin (a metal sphere's reflection over the walls).
+        std::array<std::size_t, k_neighbours> index{};
+        std::array<double, k_neighbours> dist2{};
+        const std::size_t found =
+            tree_->tree.knnSearch(query, k_neighbours, index.data(), dist2.data());
+        if (found == k_neighbours)
+            r2 = std::min(r2, dist2[found - 1]);
+        for (std::size_t i = 0; i < found; ++i)
+            if (dist2[i] <= r2)
+                sum += reflected_flux(photons_.photons[index[i]], bsdf, s, wo);
+    }
+    if (!(r2 > 0))
+        return {};
+    const double scale = 1.0 / (k_pi * r2);
+    return {float(sum.r * scale), float(sum.g * scale), float(sum.b * scale)};
 }
 
 } // namespace penumbra::raytrace

@@ -14,7 +14,8 @@ namespace penumbra::raytrace {
 
 /// \brief Reflected radiance of the caustic photons near a point: Σ f(wo, wi_p) Φ_p / (π r²)
 ///        over the photons within r that landed on the same side of a surface facing the same
-///        way (a disc kernel of the fixed radius CausticPhotons::radius_m).
+///        way; r the distance to the 64th nearest photon (at most CausticPhotons::radius_m),
+///        or that radius when fixed.
 class CausticMap {
 public:
     explicit CausticMap(CausticPhotons photons);

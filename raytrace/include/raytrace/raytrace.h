@@ -98,14 +98,17 @@ struct CausticPhoton {
 struct CausticPhotons {
     std::vector<CausticPhoton> photons;
     std::uint64_t shot = 0; ///< photons emitted to store them
-    double radius_m = 0;    ///< radius of the density estimate's disc
+    /// Radius of the density estimate's disc: fixed when \p fixed_radius (the scene's
+    /// render.caustic_radius), else the distance to the 64th nearest photon, at most this.
+    double radius_m = 0;
+    bool fixed_radius = false;
 };
 
 /// \brief Shoots caustic photons (Jensen 1996) from every source of \p scene (area emitters,
 ///        point and spot lights, the sun, the sky) at the surfaces that pass light on
 ///        (passes_photons: a lobe and no diffuse part), until Scene::render.caustic_photons
 ///        are stored or 64 times as many shot. The radius is Scene::render.caustic_radius_m,
-///        else chosen from the scene (docs/rendering.md). Empty when no surface passes light
+///        else the 64 nearest photons' (docs/rendering.md). Empty when no surface passes light
 ///        on or caustic_photons is 0. Bitwise identical for any thread count.
 CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene, const Context& ctx);
 

@@ -27,6 +27,7 @@ PACKAGES=(
     libstb-dev
     libtinygltf-dev
     nodejs
+    libnanoflann-dev
     libgtest-dev libgmock-dev
     libbenchmark-dev
     xvfb xauth

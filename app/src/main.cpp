@@ -77,6 +77,7 @@ struct BakeFlags {
     std::string clustering;
     std::string iteration;
     std::string reuse;
+    std::string camera; ///< bake and render: a camera of the scene's `cameras`; empty = `camera`
     bool no_state = false;
     std::int64_t series_every_shots = 0;
 };
@@ -87,6 +88,9 @@ struct RenderFlags {
     int spp = 0; ///< 0 = the scene's image.spp
     std::string gather = "final";
     int gather_depth = 0;
+    std::optional<int> photons;            ///< unset: the scene's render.caustic_photons
+    std::optional<double> photon_radius_m; ///< unset: the scene's render.caustic_radius
+    std::string solution; ///< an earlier bake's folder (or its solver state) to start from
 };
 
 /// `penumbra annual`'s own flags; the scene and element flags are BakeFlags'.
@@ -158,7 +162,22 @@ Scene load_with_overrides(const BakeFlags& flags, SceneLight light = SceneLight:
         scene.solver.clustering = *parse_enum<Clustering>(flags.clustering);
     if (!flags.iteration.empty())
         scene.solver.iteration = *parse_enum<SolverIteration>(flags.iteration);
+    if (!flags.camera.empty())
+        scene.select_camera(flags.camera);
     return scene;
+}
+
+/// The solver state an earlier bake wrote: \p path names its folder or the state file;
+/// \p flag names the option for messages.
+std::shared_ptr<const solver::HierarchicalState>
+read_state(const Scene& scene, const std::string& path, const char* flag) {
+    if (scene.solver.method != SolverMethod::hierarchical)
+        throw ConfigError(fmt::format("{} needs the hierarchical method, not '{}'", flag,
+                                      enum_name(scene.solver.method)));
+    namespace fs = std::filesystem;
+    const fs::path given(path);
+    return solver::read_hierarchical_state(
+        fs::is_directory(given) ? (given / app::k_solver_state_file).string() : path);
 }
 
 void log_power_balance(const Context& ctx, const std::string& output,
@@ -248,15 +267,8 @@ int run_bake(const BakeFlags& flags, const CommonFlags& common) {
     Scene scene = load_with_overrides(flags);
     check_output_dir(flags.output);
     std::shared_ptr<const solver::HierarchicalState> previous;
-    if (!flags.reuse.empty()) {
-        if (scene.solver.method != SolverMethod::hierarchical)
-            throw ConfigError(fmt::format("--reuse needs the hierarchical method, not '{}'",
-                                          enum_name(scene.solver.method)));
-        namespace fs = std::filesystem;
-        const fs::path given(flags.reuse);
-        previous = solver::read_hierarchical_state(
-            fs::is_directory(given) ? (given / app::k_solver_state_file).string() : flags.reuse);
-    }
+    if (!flags.reuse.empty())
+        previous = read_state(scene, flags.reuse, "--reuse");
     // The scene's `lightmap` key asks for lightmaps too; its charts and atlases first, so
     // that bad settings fail before the solve.
     const app::LightmapOptions lightmap = lightmap_options(scene, LightmapFlags{});
@@ -290,11 +302,18 @@ int run_render(const RenderFlags& flags, const CommonFlags& common) {
         throw InputError(flags.scene.scene, "camera",
                          "the scene has no camera, which `penumbra render` needs");
     check_output_dir(flags.scene.output);
+    scene.render.caustic_photons = flags.photons.value_or(scene.render.caustic_photons);
+    if (flags.photon_radius_m)
+        scene.render.caustic_radius_m = flags.photon_radius_m;
     raytrace::RenderOptions render;
     render.spp = flags.spp > 0 ? flags.spp : scene.camera->samples_per_pixel;
     render.gather = *parse_enum<raytrace::GatherMode>(flags.gather);
     render.gather_depth = flags.gather_depth;
+    std::shared_ptr<const solver::HierarchicalState> previous;
+    if (!flags.solution.empty())
+        previous = read_state(scene, flags.solution, "--solution");
     app::BakeOptions options;
+    options.reuse = previous.get();
     options.render_options = render;
     options.keep_state = false;
     app::BakeResult result = app::bake(scene, options, ctx);
@@ -415,6 +434,8 @@ int main(int argc, char** argv) {
     auto* bake_cmd = cli.add_subcommand("bake", "mesh, solve and write every output of a scene");
     add_solve_flags(*bake_cmd, bake);
     bake_cmd->add_flag("--no-render", bake.no_render, "skip the camera render");
+    bake_cmd->add_option("--camera", bake.camera,
+                         "render the camera of the scene's 'cameras' with this name");
     bake_cmd->add_option("--reuse", bake.reuse,
                          "hierarchical: re-solve from an earlier bake's folder (or its "
                          "solver_state.bin): same geometry, new reflectances or emissions; keeps "
@@ -447,6 +468,22 @@ int main(int argc, char** argv) {
                      "final: diffuse bounces traced before the solution is read (default 0)")
         ->check(CLI::Range(0, 64));
     add_memory_flag(*render_cmd, common);
+    render_cmd
+        ->add_option("--photons", render.photons,
+                     "final: caustic photons to store; 0 = no caustics (default: the scene's "
+                     "render.caustic_photons, else 100000)")
+        ->check(CLI::Range(0, 100'000'000));
+    render_cmd
+        ->add_option("--photon-radius", render.photon_radius_m,
+                     "final: a fixed radius of the caustic density estimate, metres (default: "
+                     "the 64 nearest photons')")
+        ->check(app::positive_number());
+    render_cmd->add_option("--camera", render.scene.camera,
+                           "render the camera of the scene's 'cameras' with this name");
+    render_cmd->add_option("--solution", render.solution,
+                           "start from an earlier bake's solution (its folder or "
+                           "solver_state.bin), as bake --reuse: its hierarchy and links are "
+                           "kept and the sweeps start from its radiosities");
     add_common_flags(*render_cmd, common);
     BakeFlags daylight;
     auto* daylight_cmd = cli.add_subcommand(

@@ -2,6 +2,11 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/error.h"
+
 namespace penumbra {
 
 std::array<int, 3> ProbeGrid::counts() const {
@@ -57,6 +62,23 @@ bool Scene::has_emitter() const {
         if (!materials[poly.material].emission.is_black())
             return true;
     return false;
+}
+
+void Scene::select_camera(const std::string& camera_name) {
+    std::vector<std::string> names;
+    for (const NamedCamera& named : cameras) {
+        if (named.name == camera_name) {
+            camera = named.camera;
+            return;
+        }
+        names.push_back(named.name);
+    }
+    throw InputError(file, "cameras",
+                     names.empty() ? fmt::format("no camera named '{}': the scene has no "
+                                                 "'cameras'",
+                                                 camera_name)
+                                   : fmt::format("no camera named '{}' (known: {})", camera_name,
+                                                 fmt::join(names, ", ")));
 }
 
 } // namespace penumbra

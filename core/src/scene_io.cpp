@@ -557,6 +557,11 @@ void validate_settings(const Scene& scene) {
     check(render.filter_width_px >= 0.01 && render.filter_width_px <= 16, scene,
           "render.filter_width_px",
           fmt::format("must be in [0.01, 16] pixels, got {}", render.filter_width_px));
+    check(render.caustic_photons >= 0, scene, "render.caustic_photons",
+          fmt::format("must be >= 0 (0 = no caustic map), got {}", render.caustic_photons));
+    check(!render.caustic_radius_m ||
+              (std::isfinite(*render.caustic_radius_m) && *render.caustic_radius_m > 0),
+          scene, "render.caustic_radius", "must be finite and > 0");
     check(!scene.lightmap ||
               (scene.lightmap->atlas_size >= 16 && scene.lightmap->atlas_size <= 16384),
           scene, "lightmap.size", "must be in [16, 16384]");
@@ -637,6 +642,9 @@ void validate_scene(Scene& scene, SceneLight light) {
     validate_sensor_grids(scene);
     if (scene.camera)
         validate_camera(scene, *scene.camera);
+    // Keys named as the main camera's: a named camera's own are the same keys of `cameras`.
+    for (const NamedCamera& named : scene.cameras)
+        validate_camera(scene, named.camera);
     validate_settings(scene);
     resolve_emission_flux(scene);
     check(light == SceneLight::weather || scene.has_emitter(), scene, "",

@@ -880,9 +880,8 @@ void parse_grids(const Field& root, const Vec3& up, SceneSpec& spec) {
         spec.grids.push_back(parse_grid(field, name, spec.metres_per_unit, up));
 }
 
-Camera parse_camera(const Field& field, double metres_per_unit, const Vec3& scene_up) {
-    field.expect_keys({"type", "eye", "look_at", "up", "fov_deg", "fov_axis", "aperture_radius",
-                       "focus_distance"});
+// A camera's keys, checked by the caller (the named cameras of "cameras" add "name").
+Camera parse_camera_keys(const Field& field, double metres_per_unit, const Vec3& scene_up) {
     if (field.has("type")) {
         const Field type = field.child("type");
         if (type.string() != "pinhole")
@@ -906,6 +905,30 @@ Camera parse_camera(const Field& field, double metres_per_unit, const Vec3& scen
     if (field.has("focus_distance"))
         camera.focus_distance_m = field.child("focus_distance").number() * metres_per_unit;
     return camera;
+}
+
+Camera parse_camera(const Field& field, double metres_per_unit, const Vec3& scene_up) {
+    field.expect_keys({"type", "eye", "look_at", "up", "fov_deg", "fov_axis", "aperture_radius",
+                       "focus_distance"});
+    return parse_camera_keys(field, metres_per_unit, scene_up);
+}
+
+// "cameras": [{"name": "top", <the keys of "camera">}, ...]: cameras besides "camera", chosen
+// by name (`--camera NAME`); "image" sets their image as the main camera's.
+void parse_cameras(const Field& field, double metres_per_unit, const Vec3& scene_up, Scene& scene) {
+    for (std::size_t i = 0; i < field.array_size(); ++i) {
+        const Field entry = field.element(i);
+        entry.expect_keys({"name", "type", "eye", "look_at", "up", "fov_deg", "fov_axis",
+                           "aperture_radius", "focus_distance"});
+        NamedCamera named{entry.required("name").string(),
+                          parse_camera_keys(entry, metres_per_unit, scene_up)};
+        if (named.name.empty())
+            entry.child("name").fail("must not be empty");
+        for (const NamedCamera& other : scene.cameras)
+            if (other.name == named.name)
+                entry.child("name").fail(fmt::format("camera '{}' named twice", named.name));
+        scene.cameras.push_back(std::move(named));
+    }
 }
 
 void parse_image(const Field& field, Camera& camera) {
@@ -998,17 +1021,21 @@ SolverSettings parse_solver(const Field& field, double metres_per_unit) {
     return solver;
 }
 
-// "render": {"spp": n, "max_bounces": n, "pixel_filter": "box", "filter_width_px": w}; spp is
-// the camera's (as image.spp: give one of them).
-void parse_render(const Field& root, Scene& scene) {
+// "render": {"spp": n, "max_bounces": n, "pixel_filter": "box", "filter_width_px": w,
+// "caustic_photons": n, "caustic_radius": r}; spp is the camera's (as image.spp: give one of
+// them); caustic_radius is in scene units.
+void parse_render(const Field& root, double metres_per_unit, Scene& scene) {
     const Field field = root.child("render");
-    field.expect_keys({"spp", "max_bounces", "pixel_filter", "filter_width_px"});
+    field.expect_keys({"spp", "max_bounces", "pixel_filter", "filter_width_px", "caustic_photons",
+                       "caustic_radius"});
     if (field.has("spp")) {
         if (!scene.camera)
             field.child("spp").fail("needs a 'camera'");
         if (root.has("image") && root.child("image").has("spp"))
             field.child("spp").fail("give 'image.spp' or 'render.spp', not both");
         scene.camera->samples_per_pixel = int(field.child("spp").integer(1, 1 << 20));
+        for (NamedCamera& named : scene.cameras)
+            named.camera.samples_per_pixel = scene.camera->samples_per_pixel;
     }
     RenderSettings& render = scene.render;
     if (field.has("max_bounces"))
@@ -1018,6 +1045,11 @@ void parse_render(const Field& root, Scene& scene) {
     if (field.has("filter_width_px"))
         render.filter_width_px =
             number_in(field.child("filter_width_px"), 0.01, 16.0, "[0.01, 16] pixels");
+    if (field.has("caustic_photons"))
+        render.caustic_photons = int(field.child("caustic_photons").integer(0, 100'000'000));
+    if (field.has("caustic_radius"))
+        render.caustic_radius_m =
+            number_in(field.child("caustic_radius"), 1e-9, 1e9, "(0, 1e9]") * metres_per_unit;
 }
 
 LightmapSettings parse_lightmap(const Field& field) {
@@ -1128,17 +1160,21 @@ void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
         parse_sensors(root.child("sensors"), scale, spec);
     if (root.has("camera"))
         scene.camera = parse_camera(root.child("camera"), scale, up);
+    if (root.has("cameras"))
+        parse_cameras(root.child("cameras"), scale, up, scene);
     if (root.has("image")) {
         if (!scene.camera)
             root.child("image").fail("'image' needs a 'camera'");
         parse_image(root.child("image"), *scene.camera);
+        for (NamedCamera& named : scene.cameras)
+            parse_image(root.child("image"), named.camera);
     }
     if (root.has("mesher"))
         scene.mesher = parse_mesher(root.child("mesher"), scale);
     if (root.has("solver"))
         scene.solver = parse_solver(root.child("solver"), scale);
     if (root.has("render"))
-        parse_render(root, scene);
+        parse_render(root, scale, scene);
     if (root.has("lightmap"))
         scene.lightmap = parse_lightmap(root.child("lightmap"));
     if (root.has("annual"))
@@ -1164,7 +1200,7 @@ SceneSpec parse_scene_json(const std::string& text, const std::string& file_name
                       "site",           "sky",       "sensors",      "grids",
                       "camera",         "image",     "mesher",       "solver",
                       "render",         "lightmap",  "background",   "emission_two_sided",
-                      "smooth_objects", "annual",    "probes"});
+                      "smooth_objects", "annual",    "probes",       "cameras"});
     SceneSpec spec;
     spec.scene.file = file_name;
     if (root.has("name"))

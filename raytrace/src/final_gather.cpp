@@ -7,12 +7,17 @@
 // final_gather): where it meets a Lambertian surface far enough away, the reflected radiance
 // (B − E)/π interpolated from the vertex radiosity ends the path; near its origin (corners,
 // contact shadows, where interpolated radiosity is worst) the path goes one bounce further.
+// Caustics (final_gather only): at every surface with a diffuse part the path meets, the
+// caustic photon map's estimate is added, and light that reaches such a surface through
+// mirrors, glass or metals alone is not added again by the path (the map counts it).
 // Streams and the row-block schedule are render_solution's, so the image does not depend on
 // the thread count.
 
 #include "raytrace/raytrace.h"
 
 #include "camera.h"
+#include "path_geometry.h"
+#include "photon_map.h"
 
 #include "core/bsdf.h"
 #include "core/error.h"
@@ -25,6 +30,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace penumbra::raytrace {
 
@@ -34,108 +40,10 @@ namespace {
 constexpr int k_roulette_after = 3;
 /// A gather hit closer than this many element sizes to its origin continues the path.
 constexpr double k_near_gather_sizes = 2.0;
-/// Offset of a ray's origin along the geometric normal, relative to the scene's diagonal.
-constexpr double k_ray_offset = 1e-5;
-
-constexpr float k_infinity = std::numeric_limits<float>::infinity();
 
 double power_heuristic(double pdf_a, double pdf_b) {
     const double a = pdf_a * pdf_a, b = pdf_b * pdf_b;
     return a + b > 0 ? a / (a + b) : 0.0;
-}
-
-/// Cosine-distributed unit vector about +z of (u1, u2) ∈ [0, 1)².
-Vec3 cosine_hemisphere(double u1, double u2) {
-    const double r = std::sqrt(u1), phi = 2.0 * k_pi * u2;
-    return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1))};
-}
-
-/// Uniform unit vector in the cone about +z of half-angle acos(cos_max).
-Vec3 uniform_cone(double cos_max, double u1, double u2) {
-    const double z = 1.0 - u1 * (1.0 - cos_max);
-    const double r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * k_pi * u2;
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
-
-float channel_mean(const Rgb& c) {
-    return (c.r + c.g + c.b) / 3.0f;
-}
-
-/// The emitting elements, chosen in proportion to their emitted power.
-class AreaLights {
-public:
-    explicit AreaLights(const RadiosityMesh& mesh) : probability_(mesh.element_count(), 0.0) {
-        double total = 0;
-        for (std::uint32_t e = 0; e < mesh.element_count(); ++e) {
-            const double power = channel_mean(mesh.patch_of(e).emission) * mesh.element_area[e];
-            if (power > 0) {
-                elements_.push_back(e);
-                total += power;
-                cdf_.push_back(total);
-            }
-        }
-        // Backwards, so that cdf_[k − 1] is still the unnormalised sum when k reads it.
-        for (std::size_t k = elements_.size(); k-- > 0;) {
-            const double before = k == 0 ? 0.0 : cdf_[k - 1];
-            probability_[elements_[k]] = (cdf_[k] - before) / total;
-            cdf_[k] /= total;
-        }
-    }
-
-    bool empty() const { return elements_.empty(); }
-    /// The element of \p u ∈ [0, 1).
-    std::uint32_t pick(double u) const {
-        const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-        return elements_[std::min<std::size_t>(std::size_t(it - cdf_.begin()),
-                                               elements_.size() - 1)];
-    }
-    /// The probability that pick() returns \p element.
-    double probability(std::uint32_t element) const { return probability_[element]; }
-
-private:
-    std::vector<std::uint32_t> elements_;
-    std::vector<double> cdf_;
-    std::vector<double> probability_;
-};
-
-/// Where a ray met a surface, and the side whose material and normal scatter it.
-struct SurfaceHit {
-    Vec3 p;
-    Vec3 normal;           ///< geometric normal of \p element's side
-    std::uint32_t element; ///< the side facing the ray, or the front of a one-sided surface
-    Vec3 shading;          ///< the interpolated vertex normal on that side, else \p normal
-};
-
-/// Barycentric weights of \p p (in the plane) in the triangle (a, b, c), unclamped.
-std::array<double, 3> triangle_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const Vec3 n = cross(b - a, c - a);
-    const double area2 = dot(n, n);
-    if (!(area2 > 0))
-        return {1.0, 0.0, 0.0};
-    const double w1 = dot(cross(p - a, c - a), n) / area2;
-    const double w2 = dot(cross(b - a, p - a), n) / area2;
-    return {1.0 - w1 - w2, w1, w2};
-}
-
-/// The polygon's vertex normals interpolated at \p p: in the fan triangle (0, k, k + 1) that
-/// contains it (the one it lies deepest in, against rounding). Unit; \p flat without normals.
-Vec3 interpolated_normal(const Polygon& polygon, const Vec3& p, const Vec3& flat) {
-    const auto& v = polygon.vertices;
-    const auto& n = polygon.normals;
-    if (n.size() != v.size() || v.size() < 3)
-        return flat;
-    double best = -std::numeric_limits<double>::infinity();
-    Vec3 normal = flat;
-    for (std::size_t k = 1; k + 1 < v.size(); ++k) {
-        const auto w = triangle_weights(p, v[0], v[k], v[k + 1]);
-        const double depth = std::min({w[0], w[1], w[2]});
-        if (depth > best) {
-            best = depth;
-            normal = n[0] * w[0] + n[k] * w[1] + n[k + 1] * w[2];
-        }
-    }
-    const double len = length(normal);
-    return len > 0 && std::isfinite(len) ? normal / len : flat;
 }
 
 /// What a path remembers of its last scattering for MIS at the next hit.
@@ -146,17 +54,25 @@ struct LastScatter {
     Vec3 sky_normal{0, 0, 1}; ///< normal about which the sky was cosine-sampled there
     bool gather = false;      ///< the ray left a diffuse lobe and may read the solution
     double near_distance = 0; ///< closer gather hits continue the path
+    /// The caustic map's estimate was added at the last surface with a diffuse part, and only
+    /// surfaces that pass photons on (passes_photons) scattered the path since: light that
+    /// reaches it now is a caustic the map has counted.
+    bool after_receiver = false;
+    bool through_specular = false; ///< after_receiver and at least one such surface since
+
+    /// Whether light found now along the path is a caustic the map has counted.
+    bool caustic() const { return after_receiver && through_specular; }
 };
 
 class PathTracer {
 public:
+    /// \p caustics: the photon map of the final gather, null for the other modes.
     PathTracer(const EmbreeScene& rt, const Scene& scene, const Solution& solution,
-               const RenderOptions& options)
+               const RenderOptions& options, const CausticMap* caustics)
         : rt_(rt), mesh_(rt.mesh()), scene_(scene), solution_(solution), options_(options),
-          lights_(rt.mesh()),
+          lights_(rt.mesh()), surfaces_(rt, scene), caustics_(caustics),
           has_glazing_(std::any_of(rt.mesh().patches.begin(), rt.mesh().patches.end(),
-                                   [](const Patch& p) { return p.glazing.has_value(); })),
-          offset_(k_ray_offset * std::max(rt.mesh().scene_diagonal, 1e-3)) {
+                                   [](const Patch& p) { return p.glazing.has_value(); })) {
         if (scene.sun && scene.sun->angular_radius() > 0) {
             sun_cos_max_ = std::cos(scene.sun->angular_radius());
             sun_solid_angle_ = 2.0 * k_pi * (1.0 - sun_cos_max_);
@@ -172,13 +88,15 @@ public:
         for (int bounces = 0;;) {
             const auto hit = rt_.intersect(Vec3f(origin), Vec3f(dir), 0.0f, k_infinity);
             if (hit.front_element < 0) {
-                radiance += beta * escaped(dir, last);
+                if (!last.caustic())
+                    radiance += beta * escaped(dir, last);
                 break;
             }
-            const SurfaceHit surface = surface_of(hit, origin, dir);
+            const SurfaceHit surface = surfaces_.surface_of(hit, origin, dir);
+            const Material& material = surfaces_.material_of(surface.element);
             if (hit.element >= 0) {
-                radiance += beta * emitted(std::uint32_t(hit.element), hit.t, dir, last);
-                const Material& material = material_of(surface.element);
+                if (!last.caustic())
+                    radiance += beta * emitted(std::uint32_t(hit.element), hit.t, dir, last);
                 if (last.gather && !material.lobe) {
                     if (hit.t >= last.near_distance) {
                         radiance += beta * reflected(hit);
@@ -189,28 +107,36 @@ public:
             if (bounces++ >= scene_.render.max_bounces)
                 break;
 
-            const Bsdf bsdf(material_of(surface.element), surface.shading, TransportMode::radiance);
+            const Bsdf bsdf(material, surface.shading, TransportMode::radiance);
             const Vec3 wo = -dir;
-            if (!bsdf.is_delta())
+            const bool receiver = caustics_ && hit.element >= 0 && receives_photons(material);
+            if (receiver)
+                radiance += beta * caustics_->radiance(bsdf, surface, wo);
+            // Light sampled at a surface that passes photons on, one chosen from a receiver's
+            // lobe, reaches that receiver as a caustic.
+            if (!bsdf.is_delta() && !(last.after_receiver && passes_photons(material)))
                 radiance += beta * direct(bsdf, surface, wo, rng);
             const double u_lobe = rng.next_double();
             const Vec2 u{rng.next_double(), rng.next_double()};
             const auto sample = bsdf.sample(wo, u_lobe, u);
             if (!sample || sample->weight.is_black() ||
-                !geometric_side_agrees(surface, wo, sample->wi, sample->transmission()))
+                !SurfaceGeometry::geometric_side_agrees(surface, wo, sample->wi,
+                                                        sample->transmission()))
                 break;
             beta = beta * sample->weight;
             last.delta = sample->delta();
             last.only_delta = last.only_delta && last.delta;
             last.pdf = sample->pdf;
-            last.sky_normal = facing(surface.shading, wo);
+            last.sky_normal = SurfaceGeometry::facing(surface.shading, wo);
+            last.through_specular = !receiver && last.after_receiver && passes_photons(material);
+            last.after_receiver = receiver || last.through_specular;
             if (sample->lobe == BsdfLobe::diffuse)
                 ++diffuse_bounces;
             last.gather = options_.gather == GatherMode::final_gather &&
                           sample->lobe == BsdfLobe::diffuse &&
                           diffuse_bounces > options_.gather_depth;
-            last.near_distance = k_near_gather_sizes * element_size(surface.element);
-            origin = offset(surface, sample->wi);
+            last.near_distance = k_near_gather_sizes * surfaces_.element_size(surface.element);
+            origin = surfaces_.offset(surface, sample->wi);
             dir = sample->wi;
 
             if (bounces >= k_roulette_after) {
@@ -224,52 +150,11 @@ public:
     }
 
 private:
-    const Material& material_of(std::uint32_t element) const {
-        return scene_.materials[mesh_.patch_of(element).material];
-    }
-
-    static Vec3 facing(const Vec3& normal, const Vec3& w) {
-        return dot(normal, w) >= 0 ? normal : -normal;
-    }
-
-    /// Edge of a right isosceles triangle of the element's area: the mesh's local size.
-    double element_size(std::uint32_t element) const {
-        return std::sqrt(2.0 * mesh_.element_area[element]);
-    }
-
-    SurfaceHit surface_of(const EmbreeScene::Hit& hit, const Vec3& origin, const Vec3& dir) const {
-        const auto element = std::uint32_t(hit.element >= 0 ? hit.element : hit.front_element);
-        const Patch& patch = mesh_.patch_of(element);
-        const Vec3 p = origin + dir * double(hit.t);
-        // The polygon's normals face its front: the back side's patch turns them round.
-        const Vec3 front = patch.back ? -patch.normal : patch.normal;
-        // Hand-made meshes (tests) may name no polygon of the scene: shaded flat.
-        Vec3 shading = patch.polygon < scene_.polygons.size()
-                           ? interpolated_normal(scene_.polygons[patch.polygon], p, front)
-                           : front;
-        if (dot(shading, front) <= 0)
-            shading = front; // a normal that turned past the plane says nothing useful
-        return {p, patch.normal, element, patch.back ? -shading : shading};
-    }
-
-    /// Whether wi leaves on the side of the geometric normal a scattering of \p wo from this
-    /// lobe must: reflection on wo's side, transmission on the other (shading normals can
-    /// send light through the surface otherwise).
-    static bool geometric_side_agrees(const SurfaceHit& s, const Vec3& wo, const Vec3& wi,
-                                      bool transmission) {
-        const bool same = dot(wo, s.normal) * dot(wi, s.normal) > 0;
-        return same != transmission;
-    }
-
-    /// A ray origin off the surface, on the side \p w leaves to.
-    Vec3 offset(const SurfaceHit& s, const Vec3& w) const {
-        return s.p + s.normal * (dot(w, s.normal) >= 0 ? offset_ : -offset_);
-    }
-
     /// Fraction of the light that passes from \p from along unit \p dir over \p distance
     /// (panes of glazing attenuate, opaque surfaces block).
     float transmittance(const Vec3& from, const Vec3& dir, double distance) const {
-        const float reach = std::isinf(distance) ? k_infinity : float(distance - 2.0 * offset_);
+        const float reach =
+            std::isinf(distance) ? k_infinity : float(distance - 2.0 * surfaces_.offset_distance());
         if (!(reach > 0))
             return 1.0f;
         const Segment segment{Vec3f(from), Vec3f(dir), 0.0f, reach};
@@ -331,7 +216,7 @@ private:
 
     /// eval() of the (reflecting) non-delta lobes, 0 where wi leaves through the surface.
     static Rgb reflect(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, const Vec3& wi) {
-        return geometric_side_agrees(s, wo, wi, false) ? bsdf.eval(wo, wi) : Rgb{};
+        return SurfaceGeometry::geometric_side_agrees(s, wo, wi, false) ? bsdf.eval(wo, wi) : Rgb{};
     }
 
     /// Direct light at a non-delta BSDF from every source.
@@ -372,7 +257,7 @@ private:
             return {};
         const double light_pdf =
             lights_.probability(element) * dist2 / (mesh_.element_area[element] * cos_light);
-        const float t = transmittance(offset(s, wi), wi, dist);
+        const float t = transmittance(surfaces_.offset(s, wi), wi, dist);
         if (t == 0)
             return {};
         const double w = power_heuristic(light_pdf, bsdf.pdf(wo, wi));
@@ -390,7 +275,7 @@ private:
         const Rgb f = reflect(bsdf, s, wo, wi);
         if (profile <= 0 || f.is_black())
             return {};
-        const float t = transmittance(offset(s, wi), wi, dist);
+        const float t = transmittance(surfaces_.offset(s, wi), wi, dist);
         return f * light.intensity * float(profile * t / dist2);
     }
 
@@ -402,7 +287,7 @@ private:
             if (f.is_black())
                 return {};
             return f * sun.irradiance *
-                   transmittance(offset(s, sun.direction), sun.direction,
+                   transmittance(surfaces_.offset(s, sun.direction), sun.direction,
                                  std::numeric_limits<double>::infinity());
         }
         const Vec3 wi =
@@ -410,7 +295,8 @@ private:
         const Rgb f = reflect(bsdf, s, wo, wi);
         if (f.is_black())
             return {};
-        const float t = transmittance(offset(s, wi), wi, std::numeric_limits<double>::infinity());
+        const float t =
+            transmittance(surfaces_.offset(s, wi), wi, std::numeric_limits<double>::infinity());
         const double light_pdf = 1.0 / sun_solid_angle_;
         const double w = power_heuristic(light_pdf, bsdf.pdf(wo, wi));
         // L / pdf = (E_n / Ω) / (1 / Ω) = E_n.
@@ -418,14 +304,15 @@ private:
     }
 
     Rgb sky_light(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, Pcg32& rng) const {
-        const Vec3 normal = facing(s.shading, wo);
+        const Vec3 normal = SurfaceGeometry::facing(s.shading, wo);
         const double u1 = rng.next_double(), u2 = rng.next_double();
         const Vec3 wi = Frame::from_normal(normal).to_world(cosine_hemisphere(u1, u2));
         const double light_pdf = std::max(0.0, dot(wi, normal)) * k_inv_pi;
         const Rgb f = reflect(bsdf, s, wo, wi);
         if (!(light_pdf > 0) || f.is_black())
             return {};
-        const float t = transmittance(offset(s, wi), wi, std::numeric_limits<double>::infinity());
+        const float t =
+            transmittance(surfaces_.offset(s, wi), wi, std::numeric_limits<double>::infinity());
         if (t == 0)
             return {};
         const double w = power_heuristic(light_pdf, bsdf.pdf(wo, wi));
@@ -438,8 +325,9 @@ private:
     const Solution& solution_;
     const RenderOptions& options_;
     AreaLights lights_;
+    SurfaceGeometry surfaces_;
+    const CausticMap* caustics_ = nullptr;
     bool has_glazing_ = false;
-    double offset_ = 0;
     double sun_cos_max_ = 1, sun_solid_angle_ = 0;
 };
 
@@ -507,7 +395,11 @@ Image render_final_gather(const EmbreeScene& rt, const Scene& scene, const Solut
     if (options.gather == GatherMode::radiosity)
         return render_solution(rt, solution, sampled, ctx);
 
-    const PathTracer tracer(rt, scene, solution, options);
+    std::optional<CausticMap> caustics;
+    if (options.gather == GatherMode::final_gather)
+        caustics.emplace(shoot_caustic_photons(rt, scene, ctx));
+    const PathTracer tracer(rt, scene, solution, options,
+                            caustics && !caustics->empty() ? &*caustics : nullptr);
     const PixelSampler sampler{tracer,
                                make_thin_lens(sampled),
                                strata_per_axis(options.spp),

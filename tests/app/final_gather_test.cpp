@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -393,6 +395,95 @@ TEST(RenderCommand, BadFlagsAreOneLineErrors) {
         EXPECT_EQ(r.exit_code, 3) << flags << ": " << r.err;
         EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << flags << ": " << r.err;
     }
+}
+
+// ---- Named cameras and re-rendering from an earlier bake's solution ----
+
+/// The bundled Cornell box (its geometry copied beside it) at 32², with a second camera named
+/// "corner"; returns the scene file's path.
+std::string cornell_with_cameras(const std::string& dir) {
+    namespace fs = std::filesystem;
+    for (const char* file : {"cornell.obj", "cornell.mtl"})
+        fs::copy_file(test::source_path(std::string("data/cornell/") + file), fs::path(dir) / file,
+                      fs::copy_options::overwrite_existing);
+    const std::string path = (fs::path(dir) / "scene.json").string();
+    std::ofstream(path) << R"({
+  "units": "mm", "up": [0, 1, 0], "geometry": "cornell.obj",
+  "materials": {"light": {"emission_two_sided": false}},
+  "camera": {"eye": [278, 273, -800], "look_at": [278, 273, 0], "fov_deg": 39.3},
+  "cameras": [{"name": "corner", "eye": [500, 450, 50], "look_at": [100, 100, 500],
+               "fov_deg": 60}],
+  "image": {"width": 32, "height": 32, "spp": 4},
+  "mesher": {"max_edge_length": 250, "discontinuity": {"enabled": false}},
+  "solver": {"residual": 1e-3, "epsilon": 0.05}
+})";
+    return path;
+}
+
+TEST(RenderCommand, NamedCameraRendersItsOwnView) {
+    const std::string dir = test::temp_dir("render_cameras");
+    const std::string scene = cornell_with_cameras(dir);
+    ASSERT_EQ(test::run_cli("render " + scene + " -o " + dir + "/main -q").exit_code, 0);
+    ASSERT_EQ(
+        test::run_cli("render " + scene + " --camera corner -o " + dir + "/corner -q").exit_code,
+        0);
+    const Image main = read_exr(dir + "/main/render.exr");
+    const Image corner = read_exr(dir + "/corner/render.exr");
+    ASSERT_EQ(main.pixels.size(), corner.pixels.size());
+    EXPECT_FALSE(std::equal(main.pixels.begin(), main.pixels.end(), corner.pixels.begin()));
+    // The corner camera looks down at the floor and the blocks: no pixel sees the light's
+    // face, which is the brightest thing in the main view.
+    const auto brightest = [](const Image& image) {
+        double m = 0;
+        for (const Rgb& p : image.pixels)
+            m = std::max(m, luminance(p));
+        return m;
+    };
+    EXPECT_LT(brightest(corner), 0.5 * brightest(main));
+}
+
+TEST(RenderCommand, UnknownCameraIsAOneLineError) {
+    const std::string dir = test::temp_dir("render_camera_unknown");
+    const std::string scene = cornell_with_cameras(dir);
+    for (const std::string command : {"render", "bake"}) {
+        const test::RunResult r =
+            test::run_cli(command + " " + scene + " --camera attic -o " + dir + "/out");
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_NE(r.err.find("attic"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("corner"), std::string::npos) << r.err;
+    }
+}
+
+double mean_luminance(const Image& image) {
+    double sum = 0;
+    for (const Rgb& p : image.pixels)
+        sum += luminance(p);
+    return sum / double(image.pixels.size());
+}
+
+/// `render --solution` re-solves from the bake's hierarchy and links (as `bake --reuse`): its
+/// sweeps start from the saved radiosities, so the image matches the full run's to within the
+/// solver's residual (1e-3 of the emitted power), and is bitwise the same for 1 and 2 threads.
+TEST(RenderCommand, SolutionOfAnEarlierBakeRerendersTheFullRunsImage) {
+    const std::string dir = test::temp_dir("render_solution");
+    const std::string scene = cornell_with_cameras(dir);
+    ASSERT_EQ(test::run_cli("bake " + scene + " --no-render -o " + dir + "/bake -q").exit_code, 0);
+    const std::string flags = " --camera corner -q -o ";
+    ASSERT_EQ(test::run_cli("render " + scene + flags + dir + "/full").exit_code, 0);
+    std::vector<Image> again;
+    for (const std::string threads : {"1", "2"}) {
+        const std::string out = dir + "/again" + threads;
+        const test::RunResult r = test::run_cli("render " + scene + " --solution " + dir +
+                                                "/bake --threads " + threads + flags + out);
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        again.push_back(read_exr(out + "/render.exr"));
+    }
+    ASSERT_EQ(again[0].pixels.size(), again[1].pixels.size());
+    EXPECT_TRUE(
+        std::equal(again[0].pixels.begin(), again[0].pixels.end(), again[1].pixels.begin()));
+    const double full = mean_luminance(read_exr(dir + "/full/render.exr"));
+    EXPECT_NEAR(mean_luminance(again[0]), full, 2e-3 * full);
 }
 
 } // namespace

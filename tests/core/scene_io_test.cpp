@@ -323,6 +323,33 @@ TEST(SceneIo, Sun) {
     EXPECT_EQ(load_scene(dir + "/grey.json").sun->irradiance, Rgb(300));
 }
 
+TEST(SceneIo, NamedCamerasAndCausticSettings) {
+    const std::string dir = test::temp_dir("scene-cameras");
+    write_file(dir, "c.json", lamp_scene(R"json(, "units": "mm",
+  "camera": {"eye": [0, 0, 5000], "look_at": [0, 0, 0], "up": [0, 1, 0]},
+  "cameras": [{"name": "low", "eye": [1000, 0, 500], "look_at": [0, 0, 0], "fov_deg": 60},
+              {"name": "high", "eye": [0, 0, 9000], "look_at": [0, 0, 0], "up": [0, 1, 0]}],
+  "image": {"width": 64, "height": 32, "spp": 9},
+  "render": {"caustic_photons": 5000, "caustic_radius": 20})json"));
+    Scene scene = load_scene(dir + "/c.json");
+    ASSERT_EQ(scene.cameras.size(), 2u);
+    EXPECT_EQ(scene.render.caustic_photons, 5000);
+    ASSERT_TRUE(scene.render.caustic_radius_m.has_value());
+    EXPECT_NEAR(*scene.render.caustic_radius_m, 0.02, 1e-15); // scene units: mm
+    scene.select_camera("low");
+    EXPECT_EQ(scene.camera->eye, Vec3(1, 0, 0.5)); // metres
+    EXPECT_EQ(scene.camera->fov_deg, 60);
+    EXPECT_EQ(scene.camera->width, 64); // `image` applies to every camera
+    EXPECT_EQ(scene.camera->samples_per_pixel, 9);
+    test::expect_one_line_input_error([&] { scene.select_camera("attic"); },
+                                      {"'attic'", "low", "high"}, "select_camera");
+
+    write_file(dir, "twice.json", lamp_scene(R"json(,
+  "cameras": [{"name": "a", "eye": [1, 0, 0], "look_at": [0, 0, 0]},
+              {"name": "a", "eye": [2, 0, 0], "look_at": [0, 0, 0]}])json"));
+    expect_one_line_error(dir + "/twice.json", {"cameras", "named twice"}, "twice.json");
+}
+
 TEST(SceneIo, BadSunsNameTheKey) {
     const std::string dir = test::temp_dir("scene-bad-sun");
     struct Case {

@@ -24,6 +24,7 @@ enum class RngPurpose : std::uint64_t {
     texel_visibility = 12, ///< lightmap texel samples (issue #29)
     probe_directions = 13, ///< light probes' gather rays (issue #29)
     texel_gather = 14,     ///< directional lightmaps' gather rays (issue #29)
+    caustic_photon = 15,   ///< caustic photons of the final gather (issue #28)
 };
 
 /// SplitMix64 finaliser: a strong 64-bit mix.

@@ -209,6 +209,10 @@ struct RenderSettings {
     int max_bounces = 16; ///< most scattering events along a path
     PixelFilter pixel_filter = PixelFilter::box;
     double filter_width_px = 1.0; ///< width of the filter's square footprint, in pixels
+    /// Caustic photons the final gather stores (issue #28); 0 = no caustic photon map.
+    int caustic_photons = 100000;
+    /// Radius of the caustic density estimate, metres; unset = chosen from the scene.
+    std::optional<double> caustic_radius_m;
 };
 
 /// \brief Lightmap baking (scene key `lightmap`, issue #29).
@@ -244,6 +248,12 @@ struct AnnualSettings {
     std::vector<Material> blinds;
 };
 
+/// \brief A camera of the scene's `cameras` list (issue #28), chosen by `--camera NAME`.
+struct NamedCamera {
+    std::string name;
+    Camera camera;
+};
+
 struct Scene {
     std::string name;
     std::string file; ///< the scene file, for messages
@@ -256,6 +266,7 @@ struct Scene {
     std::vector<Sensor> sensors;
     std::vector<SensorGrid> grids; ///< lattices of sensors of `sensors` (issue #30)
     std::optional<Camera> camera;
+    std::vector<NamedCamera> cameras; ///< besides `camera`; names unique
     MesherSettings mesher;
     SolverSettings solver;
     RenderSettings render;
@@ -269,6 +280,9 @@ struct Scene {
     BBox bounds() const;
     /// Some polygon emits, or a point light, the sun or the sky has a non-zero intensity.
     bool has_emitter() const;
+    /// \brief Makes the camera of `cameras` named \p camera_name the scene's `camera`.
+    /// \throws InputError (one line, listing the names) when no camera has that name.
+    void select_camera(const std::string& camera_name);
 };
 
 } // namespace penumbra

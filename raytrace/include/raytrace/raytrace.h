@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "core/context.h"
 #include "core/enum_names.h"
@@ -95,9 +96,37 @@ struct RenderOptions {
     int gather_depth = 0;
 };
 
+/// \brief A caustic photon, stored where it first landed on a surface with a diffuse part after
+///        one or more bounces off surfaces without one (mirror, glass, metal).
+struct CausticPhoton {
+    Vec3 position; ///< on the surface, metres
+    Vec3 incoming; ///< unit, from the surface toward where the photon came from
+    Vec3 normal;   ///< geometric normal of the side it landed on
+    Rgb power_w;   ///< the flux it carries, W per channel (already divided by the photons shot)
+};
+
+/// \brief The caustic photon map's photons and its density estimate's radius.
+struct CausticPhotons {
+    std::vector<CausticPhoton> photons;
+    std::uint64_t shot = 0; ///< photons emitted to store them
+    /// Radius of the density estimate's disc: fixed when \p fixed_radius (the scene's
+    /// render.caustic_radius), else the distance to the 64th nearest photon, at most this.
+    double radius_m = 0;
+    bool fixed_radius = false;
+};
+
+/// \brief Shoots caustic photons (Jensen 1996) from every source of \p scene (area emitters,
+///        point and spot lights, the sun, the sky) at the surfaces that pass light on
+///        (passes_photons: a lobe and no diffuse part), until Scene::render.caustic_photons
+///        are stored or 64 times as many shot. The radius is Scene::render.caustic_radius_m,
+///        else the 64 nearest photons' (docs/rendering.md). Empty when no surface passes light
+///        on or caustic_photons is 0. Bitwise identical for any thread count.
+CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene, const Context& ctx);
+
 /// \brief Renders the camera view of \p scene (the scene the mesh of \p rt was built from):
 ///        direct light from every source with multiple importance sampling, glossy, mirror and
-///        glass lobes traced on, indirect diffuse light from \p solution (GatherMode), thin-lens
+///        glass lobes traced on, indirect diffuse light from \p solution (GatherMode), caustics
+///        from a photon map in the final gather (shoot_caustic_photons()), thin-lens
 ///        depth of field, Scene::render's pixel filter and bounce limit (docs/rendering.md).
 ///        Bitwise identical for any thread count. Returns linear radiance, W/(sr·m²).
 /// \throws ConfigError for spp < 1 or a negative gather depth.

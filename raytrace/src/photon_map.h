@@ -1,0 +1,36 @@
+#pragma once
+// The caustic photons in a kd-tree (nanoflann) and their density estimate at a surface point
+// (Jensen 1996). Internal to raytrace/.
+
+#include "raytrace/raytrace.h"
+
+#include "path_geometry.h"
+
+#include "core/bsdf.h"
+
+#include <memory>
+
+namespace penumbra::raytrace {
+
+/// \brief Reflected radiance of the caustic photons near a point: Σ f(wo, wi_p) Φ_p / (π r²)
+///        over the photons within r that landed on the same side of a surface facing the same
+///        way; r the distance to the 64th nearest photon (at most CausticPhotons::radius_m),
+///        or that radius when fixed.
+class CausticMap {
+public:
+    explicit CausticMap(CausticPhotons photons);
+    ~CausticMap();
+    CausticMap(const CausticMap&) = delete;
+    CausticMap& operator=(const CausticMap&) = delete;
+
+    bool empty() const;
+    /// Radiance toward \p wo that \p bsdf reflects at \p s from the photons around it.
+    Rgb radiance(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo) const;
+
+private:
+    struct Tree;
+    CausticPhotons photons_;
+    std::unique_ptr<Tree> tree_;
+};
+
+} // namespace penumbra::raytrace

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Fuzzes one target for a while: fuzz/run.sh TARGET SECONDS [libFuzzer options...]
 # TARGET is scene_json, pts, rad, solver_state or epw. Builds the libFuzzer binaries with clang
-# (not installed by scripts/setup.sh: apt-get install clang) in build-fuzz/, then fuzzes from
-# a copy of the checked-in corpus, fuzz/corpus/TARGET/, in build-fuzz/corpus/TARGET/. A finding
-# is written to build-fuzz/findings/; fix it, then add it to fuzz/corpus/TARGET/ so that the
-# replay test (ctest -L fuzz) guards it.
+# (not installed by scripts/setup.sh: apt-get install clang libclang-rt-14-dev) in build-fuzz/,
+# then fuzzes from a copy of the checked-in corpus, fuzz/corpus/TARGET/, in
+# build-fuzz/corpus/TARGET/. A finding is written to build-fuzz/findings/; fix it, then add it
+# to fuzz/corpus/TARGET/ so that the replay test of the default build
+# (ctest --test-dir build -L fuzz) guards it.
 set -euo pipefail
 
 if [[ $# -lt 2 ]]; then

@@ -21,6 +21,7 @@ struct BoundaryEdge {
     std::uint32_t chart = 0, atlas = 0;
     Vec3 p, q;
     Vec2 uv_p, uv_q;
+    Vec3 normal; ///< of the chart's triangle along it
 };
 
 std::vector<BoundaryEdge> boundary_edges(const Charts& charts, const AtlasLayout& layout) {
@@ -40,7 +41,8 @@ std::vector<BoundaryEdge> boundary_edges(const Charts& charts, const AtlasLayout
                 if (uses[{std::min(a, b), std::max(a, b)}] != 1)
                     continue;
                 out.push_back({c, place.atlas, chart.vertices[a].position,
-                               chart.vertices[b].position, place.texel_uv[a], place.texel_uv[b]});
+                               chart.vertices[b].position, place.texel_uv[a], place.texel_uv[b],
+                               t.normal});
             }
     }
     return out;
@@ -95,7 +97,9 @@ RgbD lookup(const Image& image, const Vec2& uv) {
 
 } // namespace
 
-Seams find_seams(const Charts& charts, const AtlasLayout& layout, double weld_tolerance_m) {
+Seams find_seams(const Charts& charts, const AtlasLayout& layout, double weld_tolerance_m,
+                 double max_crease_deg) {
+    const double min_cos = std::cos(max_crease_deg * k_pi / 180.0);
     const std::vector<BoundaryEdge> edges = boundary_edges(charts, layout);
     const double cell = 4 * weld_tolerance_m;
     std::map<std::pair<CornerKey, CornerKey>, std::vector<std::uint32_t>> by_corners;
@@ -109,6 +113,8 @@ Seams find_seams(const Charts& charts, const AtlasLayout& layout, double weld_to
             for (std::size_t j = i + 1; j < list.size(); ++j) {
                 const BoundaryEdge& a = edges[list[i]];
                 const BoundaryEdge& b = edges[list[j]];
+                if (dot(a.normal, b.normal) < min_cos)
+                    continue;
                 const bool same = corner_key(a.p, cell) == corner_key(b.p, cell);
                 add_seam(a, b, same, seams.samples);
                 ++seams.edges;

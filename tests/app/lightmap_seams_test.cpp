@@ -25,10 +25,12 @@ TEST(LightmapSeams, CornellSeamsCloseAndOtherTexelsStayPut) {
     const app::LightmapResult r = app::bake_lightmaps(scene, options, test::quiet_context());
     const BBox box = scene.bounds();
     const lightmap::Seams seams =
-        lightmap::find_seams(r.charts, r.layout, 1e-6 * length(box.hi - box.lo));
-    // The room's 8 edges between walls, floor and ceiling; 8 per block (4 upright, 4 on top;
-    // the blocks have no bottom). The lamp only touches the ceiling.
+        lightmap::find_seams(r.charts, r.layout, 1e-6 * length(box.hi - box.lo), 180);
+    // Creases included (180°): the room's 8 edges between walls, floor and ceiling; 8 per
+    // block (4 upright, 4 on top; the blocks have no bottom). The lamp only touches the ceiling.
     EXPECT_EQ(seams.edges, 24u);
+    // By default only smooth seams: the Cornell box has none (every chart edge is a crease).
+    EXPECT_EQ(lightmap::find_seams(r.charts, r.layout, 1e-6 * length(box.hi - box.lo)).edges, 0u);
     std::vector<Image> stitched = r.atlases;
     const lightmap::SeamStitch s = lightmap::stitch_seams(stitched, seams, 10);
     // Seam error, W/m² (largest channel); measured with the hierarchical solve: mean 0.41,

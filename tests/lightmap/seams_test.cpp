@@ -55,7 +55,8 @@ TEST(Seams, AFoldIsOneSeamWhoseSamplesMeetIn3D) {
     settings.texels_per_metre = 20;
     settings.size = 64;
     const AtlasLayout layout = pack_atlases(charts, settings, ctx);
-    const Seams seams = find_seams(charts, layout, 1e-9);
+    EXPECT_EQ(find_seams(charts, layout, 1e-9).edges, 0u); // a crease: not stitched by default
+    const Seams seams = find_seams(charts, layout, 1e-9, 180);
     EXPECT_EQ(seams.edges, 1u);
     ASSERT_EQ(seams.samples.size(), 60u); // 1 m at 20 texels/m, 3 samples per texel
     for (const SeamSample& s : seams.samples) {

@@ -22,6 +22,10 @@ struct SeamSample {
     Vec2 uv_a, uv_b;
 };
 
+/// Seams up to this angle between the two sides' normals are stitched by default: a UV seam
+/// on a smooth or flat surface, not a crease.
+constexpr double k_smooth_seam_deg = 20;
+
 /// \brief The seams of a layout: \p edges pairs of chart edges, sampled on both sides.
 struct Seams {
     std::size_t edges = 0;
@@ -32,8 +36,11 @@ struct Seams {
 ///        are those of a boundary edge of another chart, or of another edge of the same chart,
 ///        paired with it and sampled at max(2, 3 × its longer length in texels) evenly spaced
 ///        points (interval midpoints) on both sides. Edges that share only part of their
-///        length are not seams here. Deterministic order.
-Seams find_seams(const Charts& charts, const AtlasLayout& layout, double weld_tolerance_m);
+///        length are not seams here. Deterministic order. Only edges whose triangles' normals
+///        differ by at most \p max_crease_deg pair: across a crease (a room's corner) the two
+///        sides' irradiance differs physically and must not be evened out.
+Seams find_seams(const Charts& charts, const AtlasLayout& layout, double weld_tolerance_m,
+                 double max_crease_deg = k_smooth_seam_deg);
 
 /// \brief Seam error of \p atlases: per sample the largest channel difference of the two
 ///        bilinear lookups (W/m² for irradiance), its mean and maximum over the samples.

@@ -22,15 +22,8 @@ IncidentLight::IncidentLight(const Scene& scene, const raytrace::EmbreeScene& rt
 }
 
 float IncidentLight::transmittance(const Vec3& from, const Vec3& dir, float reach) const {
-    const Segment segment{Vec3f(from), Vec3f(dir), 0.0f, reach};
-    if (!has_glazing_) {
-        std::uint8_t blocked = 0;
-        rt_.occluded(std::span(&segment, 1), std::span(&blocked, 1));
-        return blocked ? 0.0f : 1.0f;
-    }
-    float t = 0;
-    rt_.transmittance(std::span(&segment, 1), std::span(&t, 1));
-    return t;
+    return raytrace::segment_transmittance(rt_, {Vec3f(from), Vec3f(dir), 0.0f, reach},
+                                           has_glazing_);
 }
 
 RgbD IncidentLight::radiance(const Vec3& origin, const Vec3& dir) const {

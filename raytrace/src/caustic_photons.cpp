@@ -147,14 +147,8 @@ private:
 
     std::optional<Emission> emit(AreaKind, Pcg32& rng) const {
         const std::uint32_t element = lights_.pick(rng.next_double());
-        double a = rng.next_double(), b = rng.next_double();
-        if (a + b > 1) {
-            a = 1 - a;
-            b = 1 - b;
-        }
-        const auto& tri = mesh_.triangles[element];
-        const Vec3 p0 = mesh_.vertex(tri[0]);
-        const Vec3 point = p0 + (mesh_.vertex(tri[1]) - p0) * a + (mesh_.vertex(tri[2]) - p0) * b;
+        const double a = rng.next_double(), b = rng.next_double();
+        const Vec3 point = uniform_point_on(mesh_, element, a, b);
         const Patch& patch = mesh_.patch_of(element);
         const Frame frame = Frame::from_normal(patch.normal);
         const auto [dir, inv_pdf] = toward_target(point, rng, [&](double u1, double u2) {

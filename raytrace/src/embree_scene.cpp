@@ -488,4 +488,15 @@ EmbreeScene::Hit EmbreeScene::intersect(const Vec3f& origin, const Vec3f& direct
     return hit;
 }
 
+float segment_transmittance(const EmbreeScene& rt, const Segment& segment, bool glazing) {
+    if (!glazing) {
+        std::uint8_t blocked = 0;
+        rt.occluded(std::span(&segment, 1), std::span(&blocked, 1));
+        return blocked ? 0.0f : 1.0f;
+    }
+    float t = 0;
+    rt.transmittance(std::span(&segment, 1), std::span(&t, 1));
+    return t;
+}
+
 } // namespace penumbra::raytrace

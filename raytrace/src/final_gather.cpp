@@ -157,16 +157,7 @@ private:
             std::isinf(distance) ? k_infinity : float(distance - 2.0 * surfaces_.offset_distance());
         if (!(reach > 0))
             return 1.0f;
-        const Segment segment{Vec3f(from), Vec3f(dir), 0.0f, reach};
-        if (!has_glazing_) {
-            // occluded() alone: the default transmittance() allocates per call.
-            std::uint8_t blocked = 0;
-            rt_.occluded(std::span(&segment, 1), std::span(&blocked, 1));
-            return blocked ? 0.0f : 1.0f;
-        }
-        float t = 0;
-        rt_.transmittance(std::span(&segment, 1), std::span(&t, 1));
-        return t;
+        return segment_transmittance(rt_, {Vec3f(from), Vec3f(dir), 0.0f, reach}, has_glazing_);
     }
 
     /// Emitted radiance of \p element toward -dir, weighted against area-light sampling.
@@ -235,14 +226,8 @@ private:
 
     Rgb area_light(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, Pcg32& rng) const {
         const std::uint32_t element = lights_.pick(rng.next_double());
-        double a = rng.next_double(), b = rng.next_double();
-        if (a + b > 1) {
-            a = 1 - a;
-            b = 1 - b;
-        }
-        const auto& tri = mesh_.triangles[element];
-        const Vec3 p0 = mesh_.vertex(tri[0]);
-        const Vec3 point = p0 + (mesh_.vertex(tri[1]) - p0) * a + (mesh_.vertex(tri[2]) - p0) * b;
+        const double a = rng.next_double(), b = rng.next_double();
+        const Vec3 point = uniform_point_on(mesh_, element, a, b);
         const Vec3 to_light = point - s.p;
         const double dist2 = dot(to_light, to_light), dist = std::sqrt(dist2);
         if (!(dist > 0))

@@ -119,4 +119,14 @@ bool passes_photons(const Material& m) {
     return m.lobe.has_value() && !receives_photons(m);
 }
 
+Vec3 uniform_point_on(const RadiosityMesh& mesh, std::uint32_t element, double u1, double u2) {
+    if (u1 + u2 > 1) {
+        u1 = 1 - u1;
+        u2 = 1 - u2;
+    }
+    const auto& tri = mesh.triangles[element];
+    const Vec3 p0 = mesh.vertex(tri[0]);
+    return p0 + (mesh.vertex(tri[1]) - p0) * u1 + (mesh.vertex(tri[2]) - p0) * u2;
+}
+
 } // namespace penumbra::raytrace

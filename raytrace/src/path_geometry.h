@@ -25,6 +25,10 @@ Vec3 uniform_cone(double cos_max, double u1, double u2);
 /// Uniform unit vector on the sphere.
 Vec3 uniform_sphere(double u1, double u2);
 
+/// \brief A uniformly distributed point on triangle \p element of \p mesh from two uniform
+///        numbers (folded into the triangle).
+Vec3 uniform_point_on(const RadiosityMesh& mesh, std::uint32_t element, double u1, double u2);
+
 inline float channel_mean(const Rgb& c) {
     return (c.r + c.g + c.b) / 3.0f;
 }

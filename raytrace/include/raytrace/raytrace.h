@@ -64,6 +64,11 @@ private:
     const RadiosityMesh& mesh_;
 };
 
+/// \brief The transmittance of one segment. Without \p glazing (the caller knows the scene has
+///        no pane) occluded() alone, 1 or 0: the batched transmittance() of a VisibilityQuery
+///        allocates per call.
+float segment_transmittance(const EmbreeScene& rt, const Segment& segment, bool glazing);
+
 /// \brief Renders the camera view of the radiosity solution: radiance B/π interpolated from
 ///        vertex radiosity, stratified anti-aliasing with content-named random streams.
 ///        Returns linear radiance, W/(sr·m²).

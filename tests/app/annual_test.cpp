@@ -170,14 +170,7 @@ void expect_cie171_through_patches(int subdivision, double tolerance) {
     add_rect(scene, "ceiling_w", black, {0, 1.5, h}, {0, 1, 0}, {1.5, 0, 0});
     add_rect(scene, "ceiling_e", black, {2.5, 1.5, h}, {0, 1, 0}, {1.5, 0, 0});
     scene.mesher.max_edge_length = 0.5;
-    const double floor_y[] = {0.25, 0.75, 1.25, 1.75, 2.25, 2.75, 3.25, 3.75};
-    const double floor_sc[] = {2.289, 3.074, 3.823, 4.294, 4.294, 3.823, 3.074, 2.289};
-    const double wall_z[] = {2.75, 2.25, 1.75, 1.25, 0.75, 0.25};
-    const double wall_sc[] = {0.564, 1.783, 2.318, 2.198, 1.821, 1.427};
-    for (double y : floor_y)
-        scene.sensors.push_back({"floor", {2, y, 0}, {0, 0, 1}});
-    for (double z : wall_z)
-        scene.sensors.push_back({"wall", {2, 0, z}, {0, 1, 0}});
+    const std::vector<double> sky_component_pct = test::add_cie171_59_sensors(scene);
     Sky overcast;
     overcast.model = CieOvercastSky{};
     overcast.zenith_radiance = 1e4 / (7.0 * k_pi / 9.0) / k_luminous_efficacy_lm_per_w;
@@ -191,7 +184,7 @@ void expect_cie171_through_patches(int subdivision, double tolerance) {
         solver::daylight_coefficients(scene, mesh, embree, binning, {}, 0.533, ctx);
     const Eigen::VectorXf sky = annual::sky_vector(overcast, patches);
     for (std::size_t i = 0; i < 14; ++i) {
-        const double exact = i < 8 ? floor_sc[i] : wall_sc[i - 8];
+        const double exact = sky_component_pct[i];
         const double lx =
             k_luminous_efficacy_lm_per_w * double(dc.direct.row(Eigen::Index(i)).dot(sky) +
                                                   dc.indirect.row(Eigen::Index(i)).dot(sky));

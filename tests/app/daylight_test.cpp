@@ -53,19 +53,11 @@ Scene roof_opening_room() {
 
 TEST(Cie171SkyComponent, RoofOpeningUnderOvercastSky) {
     Scene scene = roof_opening_room();
-    // /work/shared/validation/README.md §3, 5.9: closed-form sky components (%).
-    const double floor_y[] = {0.25, 0.75, 1.25, 1.75, 2.25, 2.75, 3.25, 3.75};
-    const double floor_sc[] = {2.289, 3.074, 3.823, 4.294, 4.294, 3.823, 3.074, 2.289};
-    const double wall_z[] = {2.75, 2.25, 1.75, 1.25, 0.75, 0.25};
-    const double wall_sc[] = {0.564, 1.783, 2.318, 2.198, 1.821, 1.427};
-    for (double y : floor_y)
-        scene.sensors.push_back({"floor", {2, y, 0}, {0, 0, 1}});
-    for (double z : wall_z)
-        scene.sensors.push_back({"wall", {2, 0, z}, {0, 1, 0}});
+    const std::vector<double> sky_component_pct = test::add_cie171_59_sensors(scene);
     const app::BakeResult r = test::bake(scene);
     ASSERT_EQ(r.sensors.size(), 14u);
     for (std::size_t i = 0; i < 14; ++i) {
-        const double exact = i < 8 ? floor_sc[i] : wall_sc[i - 8];
+        const double exact = sky_component_pct[i];
         const double sc = r.sensors[i].illuminance_total_lx / 1e4 * 100;
         // The tolerance: every point within 1 %.
         EXPECT_NEAR(sc, exact, 0.01 * exact) << scene.sensors[i].name << " sensor " << i;

@@ -200,6 +200,23 @@ void add_cie171_room_without_ceiling(Scene& scene, std::uint32_t material) {
     add_rect(scene, "wall_x4", material, {4, 0, 0}, {0, 0, h}, {0, 4, 0});
 }
 
+std::vector<double> add_cie171_59_sensors(Scene& scene) {
+    const double floor_y[] = {0.25, 0.75, 1.25, 1.75, 2.25, 2.75, 3.25, 3.75};
+    const double floor_sc[] = {2.289, 3.074, 3.823, 4.294, 4.294, 3.823, 3.074, 2.289};
+    const double wall_z[] = {2.75, 2.25, 1.75, 1.25, 0.75, 0.25};
+    const double wall_sc[] = {0.564, 1.783, 2.318, 2.198, 1.821, 1.427};
+    std::vector<double> sky_component_pct;
+    for (std::size_t i = 0; i < std::size(floor_y); ++i) {
+        scene.sensors.push_back({"floor", {2, floor_y[i], 0}, {0, 0, 1}});
+        sky_component_pct.push_back(floor_sc[i]);
+    }
+    for (std::size_t i = 0; i < std::size(wall_z); ++i) {
+        scene.sensors.push_back({"wall", {2, 0, wall_z[i]}, {0, 1, 0}});
+        sky_component_pct.push_back(wall_sc[i]);
+    }
+    return sky_component_pct;
+}
+
 std::uint32_t add_clear_glass(Scene& scene, const std::string& name) {
     Material glass;
     glass.name = name;

@@ -85,6 +85,12 @@ void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t materi
 /// in [0, 4], z in [0, 3]; the tests add their own ceilings.
 void add_cie171_room_without_ceiling(Scene& scene, std::uint32_t material);
 
+/// \brief Adds the sensors of CIE 171 test case 5.9 (8 on the floor along y, then 6 on the
+///        wall y = 0 down from the top) to a room of add_cie171_room_without_ceiling; returns
+///        their closed-form sky components (%), in the same order
+///        (/work/shared/validation/README.md §3, docs/validation.md).
+std::vector<double> add_cie171_59_sensors(Scene& scene);
+
 /// \brief Adds Radiance's clear glass as a thin_glass material (transmissivity 0.762842 at
 ///        normal incidence, n = 1.52: 0.620 hemispherically, no diffuse part); returns its
 ///        index.

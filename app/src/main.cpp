@@ -19,6 +19,7 @@
 #include "app/lightmap.h"
 #include "app/pipeline.h"
 #include "app/probes.h"
+#include "app/serve.h"
 #include "cli_checks.h"
 #include "core/error.h"
 #include "core/files.h"
@@ -409,6 +410,17 @@ int run_view(const app::ViewRequest& request, const CommonFlags& common) {
     return k_ok;
 }
 
+// Serves a bake and the client page on localhost until stopped (Ctrl-C).
+int run_serve(const app::ServeOptions& options, const CommonFlags& common) {
+    const Context ctx = make_context(common);
+    app::serve(options, ctx, [&](int port) {
+        std::printf("serving %s at http://127.0.0.1:%d/ (Ctrl-C stops)\n",
+                    options.roots.bake.string().c_str(), port);
+        std::fflush(stdout);
+    });
+    return k_ok;
+}
+
 int run_validate(const std::string& path, const CommonFlags& common) {
     Context ctx = make_context(common);
     Scene scene = load_scene(path);
@@ -578,6 +590,18 @@ int main(int argc, char** argv) {
     auto* validate_cmd = cli.add_subcommand("validate", "load and check a scene, write nothing");
     validate_cmd->add_option("scene", validate_scene_path, "scene file")->required();
     add_common_flags(*validate_cmd, common);
+    app::ServeOptions serve{{PENUMBRA_CLIENT_DIR, {}}, 8000};
+    auto* serve_cmd = cli.add_subcommand(
+        "serve", "show a lightmap bake in the browser: serves OUT and the client page "
+                 "(client/) on http://127.0.0.1:PORT/ until stopped");
+    serve_cmd->add_option("output", serve.roots.bake, "a `penumbra lightmap` output folder")
+        ->required();
+    serve_cmd->add_option("--port", serve.port, "TCP port on 127.0.0.1 (default 8000; 0: any free)")
+        ->check(CLI::Range(0, 65535));
+    serve_cmd->add_option("--client", serve.roots.client,
+                          "the client page's folder (default: this build's source client/)");
+    serve_cmd->add_flag("-q,--quiet", common.quiet, "only warnings and errors");
+    serve_cmd->add_flag("-v,--verbose", common.verbose, "debug messages: every request");
     app::ViewRequest view;
     auto* view_cmd = cli.add_subcommand(
         "view", "show a bake's mesh.vtu or series.pvd in a window, or render it to a PNG");
@@ -620,6 +644,8 @@ int main(int argc, char** argv) {
             return run_lightmap(lightmap, common);
         if (*view_cmd)
             return run_view(view, common);
+        if (*serve_cmd)
+            return run_serve(serve, common);
         return run_validate(validate_scene_path, common);
     } catch (const InputError& e) {
         return report("error: ", e.what(), k_input);

@@ -31,6 +31,7 @@ PACKAGES=(
     libgtest-dev libgmock-dev
     libbenchmark-dev
     xvfb xauth
+    chromium
     clang-format
 )
 
@@ -55,7 +56,8 @@ install_deps() {
         "${PACKAGES[@]}" >/dev/null
 }
 
-# client/'s npm packages (the glTF validator), pinned by client/package-lock.json. Debian's
+# client/'s npm packages (the glTF validator, three.js, and playwright-core + pngjs for the
+# browser test, which drives Debian's chromium), pinned by client/package-lock.json. Debian's
 # nodejs comes without npm (its own package); NodeSource's nodejs carries it.
 install_npm_packages() {
     if ! command -v npm >/dev/null; then

@@ -138,6 +138,12 @@ std::string manifest_json(const Scene& scene, const LightmapOptions& options,
                         {"png", "preview.png"},
                         {"quantity", "radiance (rho E + emission) / pi, W/(sr m2)"},
                         {"png_exposure", camera_exposure(scene, *r.preview)}};
+    // What the browser client (client/) needs to shade as the preview does.
+    if (r.preview) {
+        const Rgb& background = scene.background;
+        j["preview"]["background"] = {background.r, background.g, background.b};
+        j["preview"]["samples_per_pixel"] = scene.camera->samples_per_pixel;
+    }
     if (!r.directional.empty())
         j["directional"] = {
             {"quantity", "L1 spherical harmonics of the incident radiance, per channel"},

@@ -3,7 +3,8 @@
 // lightmaps, serves them with `penumbra serve`, opens the page in headless Chromium (Debian's
 // /usr/bin/chromium, driven by playwright-core, WebGL 2 from ANGLE on SwiftShader) and checks:
 //   1. the page loads, and its screenshot against preview.png: mean absolute difference
-//      <= 2/255 and 99th percentile <= 8/255 (image_difference.js);
+//      <= 2/255 and 99th percentile <= 8/255 (image_difference.js); a drag on the canvas then
+//      turns the view (orbit controls);
 //   2. with lightmap_0.png flipped upside down the same comparison fails;
 //   3. without scene.gltf, without lightmap_0.png, or without a WebGL 2 context the page shows
 //      an error naming what is missing (in the DOM, the canvas hidden).
@@ -131,10 +132,20 @@ async function compareWithPreview(context, base, work, gltf, shot) {
         await view.page.close();
         return {loaded: false, status: view.status};
     }
-    await view.page.locator('canvas').screenshot({path: shot});
+    const canvas = view.page.locator('canvas');
+    await canvas.screenshot({path: shot});
     const renderer = await webglRenderer(view.page);
+    // A drag turns the view about the orbit's centre: the picture changes.
+    const box = await canvas.boundingBox();
+    const [x, y] = [box.x + box.width / 2, box.y + box.height / 2];
+    await view.page.mouse.move(x, y);
+    await view.page.mouse.down();
+    await view.page.mouse.move(x + box.width / 8, y, {steps: 4});
+    await view.page.mouse.up();
+    const turned = PNG.sync.read(await canvas.screenshot());
     await view.page.close();
-    return {loaded: true, renderer, ...imageDifference(preview, readPng(shot))};
+    return {loaded: true, renderer, turned: imageDifference(preview, turned),
+            ...imageDifference(preview, readPng(shot))};
 }
 
 const fmt = (d) => `mean ${(255 * d.mean).toFixed(3)}/255, 99th percentile ${255 * d.p99}/255`;
@@ -145,6 +156,8 @@ async function checkPreview(context, base, work) {
     if (!good.loaded) return check('page matches preview.png', false, good.status);
     console.log(`WebGL renderer: ${good.renderer}`);
     check('page matches preview.png', good.mean <= MAX_MEAN && good.p99 <= MAX_P99, fmt(good));
+    check('orbit controls turn the view', good.turned.mean > MAX_MEAN,
+          `after a drag of 1/8 of the width: ${fmt(good.turned)}`);
     const flipped = await compareWithPreview(context, base, work, 'flipped/scene.gltf',
                                              path.join(work, 'screenshot_flipped.png'));
     check('a flipped atlas fails the comparison',

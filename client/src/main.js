@@ -9,9 +9,6 @@ import {OrbitControls} from 'three/addons/controls/OrbitControls.js';
 import {MozLightmapPlugin} from './moz_lightmap.js';
 import {PreviewRenderer, previewMaterial} from './preview_shading.js';
 
-// Supersampled targets larger than this many samples take fewer strata (a full-screen window).
-const MAX_TARGET_SAMPLES = 16 * 1024 * 1024;
-
 const statusLine = document.getElementById('status');
 const canvas = document.getElementById('view');
 
@@ -71,16 +68,6 @@ function usePreviewMaterials(root, exposure) {
     });
 }
 
-// Strata per axis: the preview's (√ of its samples per pixel, rounded up), fewer when the
-// target would be too large.
-function strataFor(preview, width, height, maxSize) {
-    let strata = Math.ceil(Math.sqrt(preview.samples_per_pixel ?? 16));
-    while (strata > 1 && (width * height * strata * strata > MAX_TARGET_SAMPLES ||
-                          Math.max(width, height) * strata > maxSize))
-        --strata;
-    return strata;
-}
-
 async function main() {
     const renderer = createRenderer();
     const query = new URLSearchParams(location.search);
@@ -97,11 +84,8 @@ async function main() {
         const width = Math.min(innerWidth, Math.round(innerHeight * aspect));
         return [width, Math.round(width / aspect)];
     };
-    const [w0, h0] = size();
-    const dpr = devicePixelRatio;
-    const strata = strataFor(preview, w0 * dpr, h0 * dpr, renderer.capabilities.maxTextureSize);
     const view = new PreviewRenderer(renderer, {
-        strata,
+        samplesPerPixel: preview.samples_per_pixel ?? 16,
         background: preview.background ?? [0, 0, 0],
         exposure: preview.png_exposure,
     });
@@ -119,7 +103,7 @@ async function main() {
     controls.addEventListener('change', draw);
     addEventListener('resize', resize);
     resize();
-    setState('loaded', `${gltfUrl.pathname}: ${strata}×${strata} samples per pixel`);
+    setState('loaded', `${gltfUrl.pathname}: ${view.strata}×${view.strata} samples per pixel`);
 }
 
 main().catch((error) => {

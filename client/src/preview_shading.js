@@ -2,7 +2,7 @@
 //   1. each surface seen from its front shows the radiance L = ρ E / π + L_e, with E the
 //      irradiance from a bilinear lookup of its lightmap at TEXCOORD_1 and L_e its emitted
 //      radiance; the back of a surface is black, the background the scene's background;
-//   2. the picture is rendered at `strata` × `strata` samples per pixel into a float target, of
+//   2. the picture is rendered at `strata` × `strata` samples per pixel into a half-float target, of
 //      exposure × L (exposure: lightmaps.json's preview.png_exposure);
 //   3. each pixel is the mean of its samples (a box filter, as the preview's stratified
 //      samples), clamped to [0, 1] and sRGB-encoded (core/src/image.cpp's encode_srgb).
@@ -88,13 +88,20 @@ export function previewMaterial(source, exposure) {
     });
 }
 
+// Supersampled targets larger than this many samples take fewer strata (a full-screen window).
+const MAX_TARGET_SAMPLES = 8 * 1024 * 1024; // 64 MB of half floats
+
 // Renders a scene as the preview does: supersampled into a float target, resolved to the canvas.
+// `samplesPerPixel` is the preview camera's: strata = its square root, rounded up.
 export class PreviewRenderer {
-    constructor(renderer, {strata, background, exposure}) {
+    constructor(renderer, {samplesPerPixel, background, exposure}) {
         this.renderer = renderer;
-        this.strata = strata;
+        this.preferredStrata = Math.ceil(Math.sqrt(samplesPerPixel));
+        this.strata = this.preferredStrata;
         this.target = new THREE.WebGLRenderTarget(1, 1, {
-            type: THREE.FloatType,
+            // Half floats: 11 significant bits, far below an 8-bit step after the mean; values
+            // past 65 504 become infinite and clamp to white, as the preview clamps them.
+            type: THREE.HalfFloatType,
             minFilter: THREE.NearestFilter,
             magFilter: THREE.NearestFilter,
             depthBuffer: true,
@@ -106,7 +113,7 @@ export class PreviewRenderer {
             glslVersion: THREE.GLSL3,
             vertexShader: resolveVertexShader,
             fragmentShader: resolveFragmentShader,
-            uniforms: {samples: {value: this.target.texture}, strata: {value: strata}},
+            uniforms: {samples: {value: this.target.texture}, strata: {value: this.strata}},
             depthTest: false,
             depthWrite: false,
         }));
@@ -114,9 +121,17 @@ export class PreviewRenderer {
         this.resolveCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0, 1);
     }
 
-    // The drawing buffer's size in pixels; the target holds strata² samples per pixel.
+    // The drawing buffer's size in pixels; the target holds strata² samples per pixel, fewer
+    // when it would be too large.
     setSize(width, height) {
-        this.target.setSize(width * this.strata, height * this.strata);
+        const maxSize = this.renderer.capabilities.maxTextureSize;
+        let strata = this.preferredStrata;
+        while (strata > 1 && (width * height * strata * strata > MAX_TARGET_SAMPLES ||
+                              Math.max(width, height) * strata > maxSize))
+            --strata;
+        this.strata = strata;
+        this.resolve.material.uniforms.strata.value = strata;
+        this.target.setSize(width * strata, height * strata);
     }
 
     render(scene, camera) {

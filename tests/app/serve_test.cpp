@@ -63,5 +63,21 @@ TEST(ServeContentType, ByExtension) {
     EXPECT_EQ(app::content_type("README"), "application/octet-stream");
 }
 
+// Bad arguments end at once with one line naming the problem (exit 3), before any socket.
+TEST(ServeCli, BadArgumentsAreOneLineErrors) {
+    const fs::path dir = test::temp_dir("serve-cli");
+    const test::RunResult missing = test::run_cli("serve " + (dir / "missing").string());
+    EXPECT_EQ(missing.exit_code, 3);
+    EXPECT_NE(missing.err.find("is not a folder"), std::string::npos) << missing.err;
+    const test::RunResult no_client =
+        test::run_cli("serve " + dir.string() + " --client " + (dir / "nothing").string());
+    EXPECT_EQ(no_client.exit_code, 3);
+    EXPECT_NE(no_client.err.find("client page"), std::string::npos) << no_client.err;
+    const test::RunResult port = test::run_cli("serve " + dir.string() + " --port 70000");
+    EXPECT_EQ(port.exit_code, 3);
+    EXPECT_NE(port.err.find("--port"), std::string::npos) << port.err;
+    fs::remove_all(dir);
+}
+
 } // namespace
 } // namespace penumbra

@@ -81,6 +81,7 @@ function makeVariants(work) {
 function startServer(args, root) {
     const server = spawn(args.penumbra, ['serve', root, '--port', '0', '-q'],
                          {stdio: ['ignore', 'pipe', 'inherit']});
+    process.on('exit', () => server.kill()); // also when the test ends by an error
     return new Promise((resolve, reject) => {
         let out = '';
         server.stdout.on('data', (chunk) => {

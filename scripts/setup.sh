@@ -22,6 +22,7 @@ PACKAGES=(
     libassimp-dev
     nlohmann-json3-dev
     libcli11-dev
+    libcpp-httplib-dev
     libspdlog-dev libfmt-dev
     libpng-dev
     libstb-dev

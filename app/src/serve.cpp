@@ -1,23 +1,21 @@
-// `penumbra serve`: HTTP/1.1 over POSIX sockets on 127.0.0.1, enough for a browser to load the
-// client page and a bake. One detached thread per connection (a browser opens several at once
-// and may hold one open without a request), one request per connection, files streamed from
-// disk, nothing cached (a re-bake shows on reload).
+// `penumbra serve`: cpp-httplib's server on 127.0.0.1, enough for a browser to load the client
+// page and a bake. resolve_request picks the file from the raw request target (so its rules on
+// escapes and symbolic links hold), files are streamed from disk, nothing is cached (a re-bake
+// shows on reload).
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
-#include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <system_error>
-#include <thread>
 
-#include <arpa/inet.h>
 #include <fmt/format.h>
-#include <netinet/in.h>
+#include <httplib.h>
 #include <sys/socket.h>
-#include <sys/time.h>
-#include <unistd.h>
 
 #include "app/serve.h"
 #include "core/error.h"
@@ -28,20 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::size_t k_max_request_bytes = 16 * 1024;
-constexpr int k_socket_timeout_s = 10;
-
-// Closes a socket when it goes out of scope.
-struct Socket {
-    int fd = -1;
-    explicit Socket(int f) : fd(f) {}
-    Socket(const Socket&) = delete;
-    Socket& operator=(const Socket&) = delete;
-    ~Socket() {
-        if (fd >= 0)
-            ::close(fd);
-    }
-};
+constexpr std::size_t k_chunk_bytes = 64 * 1024;
 
 void check_roots(const ServeRoots& roots) {
     std::error_code ec;
@@ -56,112 +41,55 @@ void check_roots(const ServeRoots& roots) {
                                       roots.client.string()));
 }
 
-// A socket listening on 127.0.0.1:port (0: any free port).
-int listen_on_localhost(int port) {
-    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    if (fd < 0)
-        throw ExternalError(fmt::format("serve: socket: {}", std::strerror(errno)));
+// cpp-httplib's default sets SO_REUSEPORT, with which a second server on a busy port would
+// bind too and share its connections; SO_REUSEADDR alone only allows a restart.
+void reuse_address_only(int socket) {
     const int on = 1;
-    ::setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_port = htons(std::uint16_t(port));
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0 ||
-        ::listen(fd, 64) != 0) {
-        const int error = errno;
-        ::close(fd);
-        throw ExternalError(fmt::format("serve: cannot listen on 127.0.0.1:{}: {} (--port)", port,
-                                        std::strerror(error)));
+    ::setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
+}
+
+// Binds 127.0.0.1:port (0: any free port); returns the bound port.
+int bind_to_localhost(httplib::Server& server, int port) {
+    errno = 0;
+    int bound = port;
+    if (port == 0)
+        bound = server.bind_to_any_port("127.0.0.1");
+    else if (!server.bind_to_port("127.0.0.1", port))
+        bound = -1;
+    if (bound < 0) {
+        // httplib reports no reason; errno is bind's or listen's (the calls after them keep it).
+        const char* reason = errno != 0 ? std::strerror(errno) : "cannot bind";
+        throw ExternalError(
+            fmt::format("serve: cannot listen on 127.0.0.1:{}: {} (--port)", port, reason));
     }
-    return fd;
+    return bound;
 }
 
-int bound_port(int fd) {
-    sockaddr_in address{};
-    socklen_t size = sizeof address;
-    ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &size);
-    return ntohs(address.sin_port);
-}
-
-bool send_all(int fd, const char* data, std::size_t size) {
-    while (size > 0) {
-        const ssize_t sent = ::send(fd, data, size, MSG_NOSIGNAL);
-        if (sent < 0 && errno == EINTR)
-            continue;
-        if (sent <= 0)
-            return false;
-        data += sent;
-        size -= std::size_t(sent);
-    }
-    return true;
-}
-
-// The request's head (up to the blank line), or what came before the peer stopped.
-std::string read_head(int fd) {
-    std::string head;
-    std::array<char, 4096> buffer{};
-    while (head.find("\r\n\r\n") == std::string::npos && head.size() < k_max_request_bytes) {
-        const ssize_t got = ::recv(fd, buffer.data(), buffer.size(), 0);
-        if (got < 0 && errno == EINTR)
-            continue;
-        if (got <= 0)
-            break;
-        head.append(buffer.data(), std::size_t(got));
-    }
-    return head;
-}
-
-void send_status(int fd, int code, const char* reason) {
-    const std::string body = fmt::format("{} {}\n", code, reason);
-    const std::string response =
-        fmt::format("HTTP/1.1 {} {}\r\nContent-Type: text/plain; charset=utf-8\r\n"
-                    "Content-Length: {}\r\nConnection: close\r\n\r\n{}",
-                    code, reason, body.size(), body);
-    send_all(fd, response.data(), response.size());
-}
-
-void send_file(int fd, const fs::path& file, bool with_body) {
-    std::ifstream in(file, std::ios::binary);
+// The file as the response's body, read in chunks as httplib sends it (HEAD reads nothing).
+void send_file(const fs::path& file, httplib::Response& response) {
     std::error_code ec;
-    const auto size = fs::file_size(file, ec);
-    if (!in || ec) {
-        send_status(fd, 404, "Not Found");
+    const std::uintmax_t size = fs::file_size(file, ec);
+    auto in = std::make_shared<std::ifstream>(file, std::ios::binary);
+    if (ec || !*in) {
+        response.status = 404;
         return;
     }
-    const std::string head = fmt::format("HTTP/1.1 200 OK\r\nContent-Type: {}\r\n"
-                                         "Content-Length: {}\r\nCache-Control: no-store\r\n"
-                                         "Connection: close\r\n\r\n",
-                                         content_type(file), size);
-    if (!send_all(fd, head.data(), head.size()) || !with_body)
+    response.set_header("Cache-Control", "no-store");
+    // httplib treats a provider of length 0 as one of unknown length (chunked).
+    if (size == 0) {
+        response.set_content("", content_type(file));
         return;
-    std::array<char, 64 * 1024> buffer{};
-    while (in.read(buffer.data(), buffer.size()) || in.gcount() > 0)
-        if (!send_all(fd, buffer.data(), std::size_t(in.gcount())))
-            return;
-}
-
-// Answers one request on \p fd.
-void answer(const ServeRoots& roots, int fd, const Context& ctx) {
-    const timeval timeout{k_socket_timeout_s, 0};
-    ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
-    ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &timeout, sizeof timeout);
-    const std::string head = read_head(fd);
-    if (head.empty())
-        return; // a connection opened ahead of need and closed unused
-    const std::string line = head.substr(0, head.find("\r\n"));
-    const std::size_t space1 = line.find(' '), space2 = line.rfind(' ');
-    if (space1 == std::string::npos || space2 <= space1 || line.compare(space2, 6, " HTTP/") != 0)
-        return send_status(fd, 400, "Bad Request");
-    const std::string method = line.substr(0, space1);
-    const std::string target = line.substr(space1 + 1, space2 - space1 - 1);
-    if (method != "GET" && method != "HEAD")
-        return send_status(fd, 405, "Method Not Allowed");
-    const std::optional<fs::path> file = resolve_request(roots, target);
-    ctx.debug("serve: {} {} -> {}", method, target, file ? file->string() : "404");
-    if (!file)
-        return send_status(fd, 404, "Not Found");
-    send_file(fd, *file, method == "GET");
+    }
+    response.set_content_provider(
+        std::size_t(size), content_type(file),
+        [in](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+            std::array<char, k_chunk_bytes> buffer{};
+            in->seekg(std::streamoff(offset));
+            in->read(buffer.data(), std::streamsize(std::min(length, buffer.size())));
+            const std::streamsize got = in->gcount();
+            // A file that shrank while being sent ends the connection.
+            return got > 0 && sink.write(buffer.data(), std::size_t(got));
+        });
 }
 
 } // namespace
@@ -174,25 +102,32 @@ void serve(const ServeOptions& options, const Context& ctx,
         ctx.warn("serve: '{}' holds no scene.gltf (bake one with `penumbra lightmap SCENE -o "
                  "{}`); the page at / will say so",
                  options.roots.bake.string(), options.roots.bake.string());
-    const Socket listener(listen_on_localhost(options.port));
-    listening(bound_port(listener.fd));
-    for (;;) {
-        const int fd = ::accept4(listener.fd, nullptr, nullptr, SOCK_CLOEXEC);
-        if (fd < 0) {
-            if (errno == EINTR || errno == ECONNABORTED)
-                continue;
-            // Out of descriptors: the open connections close within their timeout.
-            if (errno == EMFILE || errno == ENFILE) {
-                std::this_thread::sleep_for(std::chrono::milliseconds(50));
-                continue;
-            }
-            throw ExternalError(fmt::format("serve: accept: {}", std::strerror(errno)));
+    httplib::Server server;
+    server.set_socket_options(reuse_address_only);
+    server.set_pre_routing_handler(
+        [](const httplib::Request& request, httplib::Response& response) {
+            if (request.method == "GET" || request.method == "HEAD")
+                return httplib::Server::HandlerResponse::Unhandled;
+            response.status = 405;
+            response.set_header("Allow", "GET, HEAD");
+            return httplib::Server::HandlerResponse::Handled;
+        });
+    server.Get(".*", [&](const httplib::Request& request, httplib::Response& response) {
+        // request.target is the target as sent: resolve_request decodes it once, itself.
+        const std::optional<fs::path> file = resolve_request(options.roots, request.target);
+        ctx.debug("serve: {} {} -> {}", request.method, request.target,
+                  file ? file->string() : "404");
+        if (!file) {
+            response.status = 404;
+            return;
         }
-        std::thread([roots = options.roots, fd, ctx] {
-            const Socket connection(fd);
-            answer(roots, connection.fd, ctx);
-        }).detach();
-    }
+        send_file(*file, response);
+    });
+    const int port = bind_to_localhost(server, options.port);
+    listening(port);
+    if (!server.listen_after_bind())
+        throw ExternalError(fmt::format("serve: 127.0.0.1:{} stopped accepting connections: {}",
+                                        port, std::strerror(errno)));
 }
 
 } // namespace penumbra::app

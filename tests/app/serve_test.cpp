@@ -1,11 +1,17 @@
 // `penumbra serve`'s request paths (issue #29): `/`, /client/ and /bake/ map to files inside
 // their roots; `..`, escapes of it, other prefixes, folders and symbolic links out of a root
-// give nothing (404). The server itself is exercised by the browser test (client/test/).
+// give nothing (404); a busy port is a one-line error. The server's answers are exercised by the
+// browser test (client/test/).
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include "app/serve.h"
 #include "common/test_util.h"
@@ -76,6 +82,42 @@ TEST(ServeCli, BadArgumentsAreOneLineErrors) {
     const test::RunResult port = test::run_cli("serve " + dir.string() + " --port 70000");
     EXPECT_EQ(port.exit_code, 3);
     EXPECT_NE(port.err.find("--port"), std::string::npos) << port.err;
+    fs::remove_all(dir);
+}
+
+// A port another server listens on is a one-line error (exit 4), even when that server allows
+// SO_REUSEPORT: a second `penumbra serve` must not share its connections (were it to bind, this
+// test would hang until ctest's timeout, the server never ending by itself).
+TEST(ServeCli, BusyPortIsOneLineError) {
+    const int holder = ::socket(AF_INET, SOCK_STREAM, 0);
+    ASSERT_GE(holder, 0);
+    const int on = 1;
+    ::setsockopt(holder, SOL_SOCKET, SO_REUSEPORT, &on, sizeof on);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::bind(holder, reinterpret_cast<const sockaddr*>(&address), sizeof address), 0);
+    ASSERT_EQ(::listen(holder, 1), 0);
+    socklen_t size = sizeof address;
+    ::getsockname(holder, reinterpret_cast<sockaddr*>(&address), &size);
+    const int port = ntohs(address.sin_port);
+
+    // A bake and a client folder that pass serve's checks (no warning), so that it goes on to bind.
+    const fs::path dir = test::temp_dir("serve-busy");
+    fs::create_directories(dir / "client/node_modules/three/build");
+    for (const fs::path& f : {dir / "scene.gltf", dir / "client/index.html",
+                              dir / "client/node_modules/three/build/three.module.js"})
+        std::ofstream(f) << "x";
+    const test::RunResult busy =
+        test::run_cli("serve " + dir.string() + " --client " + (dir / "client").string() +
+                      " --port " + std::to_string(port));
+    ::close(holder);
+    EXPECT_EQ(busy.exit_code, 4);
+    EXPECT_NE(busy.err.find("cannot listen on 127.0.0.1:" + std::to_string(port)),
+              std::string::npos)
+        << busy.err;
+    EXPECT_NE(busy.err.find("(--port)"), std::string::npos) << busy.err;
+    EXPECT_EQ(std::count(busy.err.begin(), busy.err.end(), '\n'), 1) << busy.err;
     fs::remove_all(dir);
 }
 

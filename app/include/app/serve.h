@@ -35,12 +35,12 @@ struct ServeOptions {
     int port = 8000; ///< 0: a free port chosen by the system
 };
 
-/// \brief Serves GET and HEAD requests on 127.0.0.1 until the process is stopped; one thread per
-///        connection, one request per connection. Calls \p listening with the port once it
-///        accepts connections.
+/// \brief Serves GET and HEAD requests on 127.0.0.1 until the process is stopped (cpp-httplib's
+///        server: a pool of threads, keep-alive connections; other methods get 405). Calls
+///        \p listening with the port once it accepts connections.
 /// \throws ConfigError when a root is missing or the client's three.js is not installed (a
 ///         bake folder without scene.gltf is a warning),
-///         ExternalError when the port cannot be bound.
+///         ExternalError when the port cannot be bound or the server stops accepting.
 void serve(const ServeOptions& options, const Context& ctx,
            const std::function<void(int port)>& listening);
 

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -186,6 +188,22 @@ TEST(LightmapMixed, IndirectOnlyTexelsAreTheSolutionsIndirectLight) {
     EXPECT_GT(count, 350u);
 }
 
+// With `--gather` the indirect-only light's direct part is subtracted: the gather finds a
+// point light's exactly (a delta, one shadow ray), as the direct gather does, so the black
+// floor reads 0 up to float rounding (10⁻⁵ of the light's 1 W/m² under it).
+TEST(LightmapMixed, GatherLeavesOutTheIndirectOnlyLight) {
+    const Scene scene = lamp_over_floor(LightmapMode::indirect, 0.0f, 0.0f);
+    app::LightmapOptions options = atlas_options(20, 64);
+    options.gather_samples = 4;
+    const app::LightmapResult r = app::bake_lightmaps(scene, options, test::quiet_context());
+    float largest = 0;
+    for (const Image& atlas : r.atlases)
+        for (const Rgb& h : atlas.pixels)
+            largest = std::max({largest, h.r, h.g, h.b});
+    EXPECT_LT(largest, 1e-5f);
+    EXPECT_GT(r.counts.texels, 1500u);
+}
+
 TEST(LightmapMixed, SceneKeyReadsEveryLightsModeAndRefusesAnUnknownOne) {
     const std::string dir = test::temp_dir("lightmap-mode");
     const auto write = [&](const std::string& mode) {
@@ -195,7 +213,8 @@ TEST(LightmapMixed, SceneKeyReadsEveryLightsModeAndRefusesAnUnknownOne) {
   "point_lights": [{"name": "bulb", "position": [0, 0, 2], "intensity_cd": 100,
                     "lightmap_mode": ")" + mode + R"("}],
   "sun": {"direction": [0, 0, 1], "irradiance_w_m2": 100, "lightmap_mode": "indirect"},
-  "sky": {"model": "uniform", "horizontal_illuminance_lx": 1000, "lightmap_mode": "all"}
+  "sky": {"model": "uniform", "horizontal_illuminance_lx": 1000, "lightmap_mode": "all"},
+  "lightmap": {"gather": 8}
 })";
         return dir + "/scene.json";
     };
@@ -204,6 +223,7 @@ TEST(LightmapMixed, SceneKeyReadsEveryLightsModeAndRefusesAnUnknownOne) {
     EXPECT_EQ(scene.point_lights.at(0).lightmap_mode, LightmapMode::indirect);
     EXPECT_EQ(scene.sun->lightmap_mode, LightmapMode::indirect);
     EXPECT_EQ(scene.sky->lightmap_mode, LightmapMode::all);
+    EXPECT_EQ(scene.lightmap->gather, 8);
     test::expect_one_line_input_error([&] { load_scene(write("mixed")); },
                                       {"lightmap_mode", "unknown lightmap mode 'mixed'"},
                                       "a bad lightmap_mode");
@@ -330,6 +350,48 @@ TEST(LightmapGather, SameBitsForOneAndTwoThreads) {
         ASSERT_EQ(p1.size(), p2.size());
         EXPECT_EQ(std::memcmp(p1.data(), p2.data(), p1.size() * sizeof(Rgb)), 0);
     }
+}
+
+// ---- The CLI: bake, then re-bake the lightmaps with `--reuse` and `--gather`; one-line
+// errors for bad values before anything is written. ----
+
+const char* k_cli_scene = R"({
+  "materials": {"lamp": {"emission": [1, 1, 1], "reflectance": 0}, "floor": {"reflectance": 0.5}},
+  "polygons": [
+    {"name": "lamp", "material": "lamp", "vertices": [[0,0,1],[0,1,1],[1,1,1],[1,0,1]]},
+    {"name": "floor", "material": "floor", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}
+  ],
+  "point_lights": [{"name": "bulb", "position": [0.5, 0.5, 0.5], "intensity_cd": 10,
+                    "lightmap_mode": "indirect"}],
+  "mesher": {"max_edge_length": 0.5},
+  "solver": {"min_area": 0.01}
+})";
+
+TEST(LightmapMixedCli, RebakesFromABakesStateAndListsTheModes) {
+    const std::filesystem::path dir = test::temp_dir("lightmap-rebake");
+    std::ofstream(dir / "scene.json") << k_cli_scene;
+    const std::string scene = (dir / "scene.json").string();
+    test::RunResult r = test::run_cli("bake " + scene + " -o " + (dir / "bake").string() + " -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = test::run_cli("lightmap " + scene + " -o " + (dir / "out").string() + " --reuse " +
+                      (dir / "bake").string() + " --gather 4 --texels-per-metre 16 --atlas 64 -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto manifest = nlohmann::json::parse(std::ifstream(dir / "out" / "lightmaps.json"));
+    ASSERT_EQ(manifest["lights"].size(), 2u);
+    EXPECT_EQ(manifest["lights"][0]["name"], "bulb");
+    EXPECT_EQ(manifest["lights"][0]["mode"], "indirect");
+    EXPECT_EQ(manifest["lights"][1]["kind"], "material");
+    EXPECT_EQ(manifest["lights"][1]["mode"], "all");
+    // Bad flags exit 3, a missing state (bad input) 2, as bake --reuse.
+    const std::vector<std::pair<std::string, int>> bad{
+        {"--gather -1", 3}, {"--gather many", 3}, {"--reuse " + (dir / "nothing").string(), 2}};
+    for (const auto& [flags, code] : bad) {
+        r = test::run_cli("lightmap " + scene + " -o " + (dir / "bad").string() + " -q " + flags);
+        EXPECT_EQ(r.exit_code, code) << flags << ": " << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << flags << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "bad" / "lightmaps.json")) << flags;
+    }
+    std::filesystem::remove_all(dir);
 }
 
 } // namespace

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <utility>
 
 namespace penumbra::app {
 
@@ -14,9 +15,9 @@ constexpr float k_infinity = std::numeric_limits<float>::infinity();
 } // namespace
 
 IncidentLight::IncidentLight(const Scene& scene, const raytrace::EmbreeScene& rt,
-                             const Solution& solution)
+                             const Solution& solution, solver::DirectLightOptions direct)
     : scene_(scene), rt_(rt), solution_(solution),
-      offset_(1e-5 * std::max(rt.mesh().scene_diagonal, 1e-3)) {
+      offset_(1e-5 * std::max(rt.mesh().scene_diagonal, 1e-3)), direct_(std::move(direct)) {
     for (const Patch& p : rt.mesh().patches)
         has_glazing_ |= !p.opaque();
 }
@@ -47,10 +48,11 @@ RayLight IncidentLight::trace(const Vec3& origin, const Vec3& dir) const {
         l.reflected = RgbD(std::max(0.0f, reflected.r), std::max(0.0f, reflected.g),
                            std::max(0.0f, reflected.b)) *
                       k_inv_pi;
-        l.emitted = RgbD(emission) * k_inv_pi;
+        if (sees(AreaSource{mesh.patch_of(e).polygon}))
+            l.emitted = RgbD(emission) * k_inv_pi;
         l.element = hit.element;
         l.distance = hit.t;
-    } else if (hit.front_element < 0 && scene_.sky) {
+    } else if (hit.front_element < 0 && scene_.sky && sees(SkySource{})) {
         l.reflected = RgbD(scene_.sky->radiance(dir));
     }
     if (!has_glazing_ || (l.reflected + l.emitted).max_component() <= 0)
@@ -65,7 +67,10 @@ RayLight IncidentLight::trace(const Vec3& origin, const Vec3& dir) const {
 
 std::vector<DeltaLight> IncidentLight::deltas(const Vec3& origin) const {
     std::vector<DeltaLight> out;
-    for (const PointLight& light : scene_.point_lights) {
+    for (std::size_t i = 0; i < scene_.point_lights.size(); ++i) {
+        const PointLight& light = scene_.point_lights[i];
+        if (!sees(PointSource{std::uint32_t(i)}))
+            continue;
         const Vec3 to_light = light.position - origin;
         const double d = length(to_light);
         if (!(d > 2 * offset_))
@@ -78,7 +83,7 @@ std::vector<DeltaLight> IncidentLight::deltas(const Vec3& origin) const {
         if (t > 0)
             out.push_back({dir, RgbD(light.intensity) * (profile * double(t) / (d * d))});
     }
-    if (scene_.sun && !scene_.sun->irradiance.is_black()) {
+    if (scene_.sun && !scene_.sun->irradiance.is_black() && sees(SunSource{})) {
         const float t = transmittance(origin, scene_.sun->direction, k_infinity);
         if (t > 0)
             out.push_back({scene_.sun->direction, RgbD(scene_.sun->irradiance) * double(t)});

@@ -13,6 +13,7 @@
 #include "core/scene.h"
 #include "core/vec.h"
 #include "raytrace/raytrace.h"
+#include "solver/solver.h"
 
 namespace penumbra::app {
 
@@ -34,8 +35,11 @@ struct RayLight {
 /// \brief Incident radiance from a solution. Thread-safe; keeps references to its arguments.
 class IncidentLight {
 public:
-    /// \p rt traces the mesh \p solution lives on, a mesh of \p scene.
-    IncidentLight(const Scene& scene, const raytrace::EmbreeScene& rt, const Solution& solution);
+    /// \p rt traces the mesh \p solution lives on, a mesh of \p scene. \p direct leaves out
+    ///        the emitted and delta light and the sky of the sources it excludes (their
+    ///        reflected light stays: mixed lighting, issue #29).
+    IncidentLight(const Scene& scene, const raytrace::EmbreeScene& rt, const Solution& solution,
+                  solver::DirectLightOptions direct = {});
 
     /// \brief Radiance (W/(sr·m²)) arriving at \p origin from the unit direction \p dir,
     ///        trace()'s reflected + emitted.
@@ -65,6 +69,11 @@ private:
     const Solution& solution_;
     bool has_glazing_ = false;
     double offset_ = 0;
+    solver::DirectLightOptions direct_;
+    /// Whether \p source's direct light is seen (direct_ includes it).
+    bool sees(const LightSource& source) const {
+        return !direct_.include || direct_.include(source);
+    }
 };
 
 /// \brief Stratified random directions in a local frame (z up): \p n_z equal bands of z

@@ -7,6 +7,7 @@
 #include "lightmap_fill.h"
 #include "lightmap_preview.h"
 #include "memory_checks.h"
+#include "texel_light.h"
 
 #include <algorithm>
 #include <chrono>
@@ -81,7 +82,7 @@ void fill_lightmaps(const Scene& scene, const BakeResult& bake, LightmapResult& 
         const RadiosityMesh& sources = bake.input_mesh ? *bake.input_mesh : bake.mesh;
         for (const lightmap::AtlasTexels& atlas : r.texels)
             r.atlases.push_back(fill_atlas(scene, bake.solution, *rt, sources, r.charts, r.layout,
-                                           atlas, ctx, r.counts));
+                                           atlas, ctx, r.counts, r.options.gather_samples));
         r.rays = rt->rays_traced();
         return 0;
     });
@@ -100,8 +101,8 @@ void fill_lightmaps(const Scene& scene, const BakeResult& bake, LightmapResult& 
     if (r.options.directional)
         timed(r.times, "directional", [&] {
             const raytrace::EmbreeScene rt(bake.mesh);
-            const IncidentLight light(scene, rt, bake.solution);
-            const EmitterTable emitters = emitter_table(bake.mesh);
+            const IncidentLight light(scene, rt, bake.solution, baked_direct_light(scene));
+            const EmitterTable emitters = emitter_table(bake.mesh, baked_direct_light(scene));
             const DirectionalInputs in{&light,         &emitters, &rt,
                                        &bake.solution, &r.charts, &r.layout};
             for (std::size_t a = 0; a < r.texels.size(); ++a)

@@ -118,14 +118,14 @@ std::array<RgbD, 4> texel_coefficients(const ShL2& radiance, const Vec3& normal,
 
 } // namespace
 
-EmitterTable emitter_table(const RadiosityMesh& mesh) {
+EmitterTable emitter_table(const RadiosityMesh& mesh, const solver::DirectLightOptions& direct) {
     EmitterTable t;
     t.mesh = &mesh;
     t.probability_of.assign(mesh.element_count(), 0.0);
     double total = 0;
     for (std::uint32_t e = 0; e < mesh.element_count(); ++e) {
         const double power = RgbD(mesh.patch_of(e).emission).sum() * mesh.element_area[e];
-        if (power <= 0)
+        if (power <= 0 || (direct.include && !direct.include(AreaSource{mesh.patch_of(e).polygon})))
             continue;
         t.elements.push_back(e);
         t.probability_of[e] = power;

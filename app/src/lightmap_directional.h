@@ -23,8 +23,10 @@ struct EmitterTable {
 };
 
 /// \brief The emitting elements of \p mesh (kept by reference): the mesh the gather rays
-///        trace, so that a ray's hit names its element's light-sample density.
-EmitterTable emitter_table(const RadiosityMesh& mesh);
+///        trace, so that a ray's hit names its element's light-sample density. Without those
+///        \p direct excludes (by their polygon's AreaSource: mixed lighting).
+EmitterTable emitter_table(const RadiosityMesh& mesh,
+                           const solver::DirectLightOptions& direct = {});
 
 /// \brief What the directional fill reads; every pointer set, everything outliving the call.
 struct DirectionalInputs {

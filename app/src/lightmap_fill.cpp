@@ -1,5 +1,7 @@
 #include "lightmap_fill.h"
 
+#include "texel_light.h"
+
 #include <algorithm>
 #include <array>
 #include <optional>
@@ -81,12 +83,12 @@ SampleBatch locate_batch(const Solution& solution, const raytrace::EmbreeScene& 
     return b;
 }
 
-// Direct light at the batch's visible samples (in slot order), then each texel's mean;
+// The light at the batch's visible samples (in slot order: texel_sample_light, plus the
+// solution's indirect light unless it is the final gather's), then each texel's mean;
 // marks the texels with a value in \p valued and counts into \p stats.
-void fill_batch(const Scene& scene, const raytrace::EmbreeScene& rt, const RadiosityMesh& sources,
-                const AtlasTexels& texels, std::size_t begin, const SampleBatch& b,
-                const Context& ctx, Image& image, std::vector<std::uint8_t>& valued,
-                LightmapCounts& stats) {
+void fill_batch(const TexelLightSources& light, const AtlasTexels& texels, std::size_t begin,
+                const SampleBatch& b, const Context& ctx, Image& image,
+                std::vector<std::uint8_t>& valued, LightmapCounts& stats) {
     constexpr std::size_t slots = std::size_t(k_texel_samples_per_axis * k_texel_samples_per_axis);
     std::vector<Vec3> points, normals;
     for (std::size_t slot = 0; slot < b.visible.size(); ++slot)
@@ -94,8 +96,7 @@ void fill_batch(const Scene& scene, const raytrace::EmbreeScene& rt, const Radio
             points.push_back(b.point[slot]);
             normals.push_back(b.normal[slot]);
         }
-    const std::vector<Rgb> direct =
-        solver::direct_irradiance_at(scene, sources, rt, points, normals, ctx);
+    const std::vector<Rgb> direct = texel_sample_light(light, points, normals, ctx);
     std::size_t next = 0;
     for (std::size_t k = 0; k < b.count.size(); ++k) {
         RgbD sum;
@@ -104,7 +105,8 @@ void fill_batch(const Scene& scene, const raytrace::EmbreeScene& rt, const Radio
             const std::size_t slot = k * slots + i;
             if (!b.visible[slot])
                 continue;
-            sum += RgbD(direct[next++] + b.indirect[slot]);
+            sum += RgbD(adds_solution_indirect(light) ? direct[next++] + b.indirect[slot]
+                                                      : direct[next++]);
             ++visible;
         }
         stats.samples += b.count[k];
@@ -208,7 +210,8 @@ std::optional<MeshSample> locate_sample(const raytrace::EmbreeScene& rt, const S
 Image fill_atlas(const Scene& scene, const Solution& solution, const raytrace::EmbreeScene& rt,
                  const RadiosityMesh& sources, const lightmap::Charts& charts,
                  const lightmap::AtlasLayout& layout, const lightmap::AtlasTexels& texels,
-                 const Context& ctx, LightmapCounts& counts) {
+                 const Context& ctx, LightmapCounts& counts, int gather_samples) {
+    const TexelLightSources light{scene, solution, rt, sources, gather_samples};
     Image image(texels.size, texels.size);
     std::vector<std::uint8_t> valued(image.pixels.size(), 0);
     LightmapCounts own;
@@ -220,7 +223,7 @@ Image fill_atlas(const Scene& scene, const Solution& solution, const raytrace::E
             const SampleBatch batch = run_in_arena(ctx, [&] {
                 return locate_batch(solution, rt, charts, layout, texels, begin, end);
             });
-            fill_batch(scene, rt, sources, texels, begin, batch, ctx, image, valued, own);
+            fill_batch(light, texels, begin, batch, ctx, image, valued, own);
             progress.update(double(end) / double(texels.texels.size()));
         }
     }

@@ -49,11 +49,13 @@ std::optional<MeshSample> locate_sample(const raytrace::EmbreeScene& rt, const S
 ///        of its chart's neighbouring texels, grown inwards. Then dilated into the padding:
 ///        each free texel within layout.padding of a chart takes its nearest covered texel.
 ///        \p rt traces the mesh \p solution lives on; the direct light comes from the
-///        emitting elements of \p sources (solver::direct_irradiance_at). Deterministic for
-///        any thread count; adds what it found to \p counts.
+///        emitting elements of \p sources (solver::direct_irradiance_at), without the
+///        lights whose lightmap_mode is indirect. With \p gather_samples > 0 a sample's value
+///        is the final gather's instead (texel_sample_light). Deterministic for any thread
+///        count; adds what it found to \p counts.
 Image fill_atlas(const Scene& scene, const Solution& solution, const raytrace::EmbreeScene& rt,
                  const RadiosityMesh& sources, const lightmap::Charts& charts,
                  const lightmap::AtlasLayout& layout, const lightmap::AtlasTexels& texels,
-                 const Context& ctx, LightmapCounts& counts);
+                 const Context& ctx, LightmapCounts& counts, int gather_samples = 0);
 
 } // namespace penumbra::app

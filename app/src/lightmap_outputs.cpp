@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/files.h"
 #include "lightmap_gltf.h"
+#include "texel_light.h"
 
 namespace penumbra::app {
 
@@ -107,7 +108,10 @@ std::string manifest_json(const Scene& scene, const LightmapOptions& options,
     nlohmann::json j;
     j["scene"] = scene.name;
     j["scene_file"] = scene.file;
-    j["quantity"] = "irradiance (direct + indirect) on the charted side of each polygon";
+    j["quantity"] = has_indirect_only_light(scene)
+                        ? "irradiance on the charted side of each polygon: every light's "
+                          "indirect, the direct of the lights whose mode is all (lights)"
+                        : "irradiance (direct + indirect) on the charted side of each polygon";
     j["units"] = "W/m2, linear RGB (the scene's radiometric channels; lux = 179 lm/W x "
                  "(0.265 R + 0.670 G + 0.065 B))";
     j["exr_pixels"] = options.exr == ExrPixels::half ? "half" : "float";
@@ -152,6 +156,7 @@ std::string manifest_json(const Scene& scene, const LightmapOptions& options,
             {"irradiance", "E(n) = pi L00 Y00(n) + (2 pi / 3) (L1-1 Y1-1(n) + L10 Y10(n) + L11 "
                            "Y11(n)), Y00 = 0.282095, Y1m = 0.488603 (y, z, x); equals the "
                            "irradiance atlas at the surface's normal"}};
+    j["lights"] = lightmap_modes_json(scene);
     j["polygons"] = polygons_json(scene, r);
     nlohmann::json charts = nlohmann::json::array();
     for (std::size_t c = 0; c < r.charts.charts.size(); ++c)

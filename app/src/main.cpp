@@ -114,6 +114,7 @@ struct LightmapFlags {
     bool float_exr = false;
     bool directional = false;
     bool no_seam_stitch = false;
+    std::optional<int> gather; ///< final-gather paths per texel sample; unset: lightmap.gather
 };
 
 Context make_context(const CommonFlags& flags) {
@@ -235,6 +236,7 @@ app::LightmapOptions lightmap_options(const Scene& scene, const LightmapFlags& f
     options.exr = flags.float_exr ? ExrPixels::float32 : ExrPixels::half;
     options.directional = flags.directional || (scene.lightmap && scene.lightmap->directional);
     options.stitch_seams = !flags.no_seam_stitch;
+    options.gather_samples = flags.gather.value_or(scene.lightmap ? scene.lightmap->gather : 0);
     return options;
 }
 
@@ -352,7 +354,13 @@ int run_lightmap(const LightmapFlags& flags, const CommonFlags& common) {
     const app::LightmapOptions options = lightmap_options(scene, flags);
     app::LightmapResult result = app::plan_lightmaps(scene, options, ctx);
     check_output_dir(flags.scene.output);
-    const app::BakeResult baked = app::bake(scene, app::lightmap_bake_options(), ctx);
+    // Re-bake: the stored hierarchy and links, the new reflectances and emissions.
+    std::shared_ptr<const solver::HierarchicalState> previous;
+    if (!flags.scene.reuse.empty())
+        previous = read_state(scene, flags.scene.reuse, "--reuse");
+    app::BakeOptions bake_options = app::lightmap_bake_options();
+    bake_options.reuse = previous.get();
+    const app::BakeResult baked = app::bake(scene, bake_options, ctx);
     app::fill_lightmaps(scene, baked, result, ctx);
     app::write_lightmaps(flags.scene.output, scene, options, result);
     log_lightmaps(ctx, flags.scene.output, result);
@@ -581,6 +589,16 @@ int main(int argc, char** argv) {
                            "also the L1 spherical harmonics of the incident radiance: "
                            "lightmap_N_L00/L1m1/L10/L11.exr (default: the scene's "
                            "lightmap.directional)");
+    lightmap_cmd
+        ->add_option("--gather", lightmap.gather,
+                     "fill each texel sample with N final-gather paths (the render's) instead "
+                     "of direct light + the solution's indirect light; 0 = off (default: the "
+                     "scene's lightmap.gather, else 0)")
+        ->check(CLI::Range(0, 1 << 16));
+    lightmap_cmd->add_option("--reuse", lightmap.scene.reuse,
+                             "hierarchical: re-bake from an earlier bake's folder (or its "
+                             "solver_state.bin) after a change of light intensities or "
+                             "reflectances: its links are kept, no new form factors");
     lightmap_cmd->add_flag("--no-seam-stitch", lightmap.no_seam_stitch,
                            "leave the seams between charts as filled (the error is still "
                            "reported)");

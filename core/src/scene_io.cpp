@@ -123,6 +123,8 @@ void apply_material_spec(Material& material, const MaterialSpec& spec) {
         material.two_sided = *spec.two_sided;
     if (spec.emission_two_sided)
         material.emission_two_sided = *spec.emission_two_sided;
+    if (spec.lightmap_mode)
+        material.lightmap_mode = *spec.lightmap_mode;
     if (spec.lobe) {
         material.lobe = *spec.lobe;
         // A metal, a mirror or glass reflects only through its lobe.

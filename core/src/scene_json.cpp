@@ -384,11 +384,23 @@ std::optional<Lobe> parse_lobe(const Field& field, const MaterialType& type) {
     return std::nullopt;
 }
 
+// `lightmap_mode` of a light or an emitting material (issue #29): "all" unless given.
+std::optional<LightmapMode> parse_lightmap_mode(const Field& parent) {
+    if (!parent.has("lightmap_mode"))
+        return std::nullopt;
+    const Field field = parent.child("lightmap_mode");
+    const std::optional<LightmapMode> mode = parse_enum<LightmapMode>(field.string());
+    if (!mode)
+        field.fail(fmt::format("unknown lightmap mode '{}' (known: {})", field.string(),
+                               enum_name_list<LightmapMode>()));
+    return mode;
+}
+
 MaterialSpec parse_material(const Field& field, const std::string& name) {
     field.expect_keys({"type", "reflectance", "emission", "emission_flux_lm", "emission_color",
                        "two_sided", "emission_two_sided", "transmissivity", "transmittance_normal",
                        "ior", "alpha", "specular", "fresnel", "solid", "transmittance",
-                       "diffuse_transmittance"});
+                       "diffuse_transmittance", "lightmap_mode"});
     if (name.empty())
         field.fail("a material name must not be empty");
     MaterialSpec spec;
@@ -411,6 +423,7 @@ MaterialSpec parse_material(const Field& field, const std::string& name) {
         spec.two_sided = field.child("two_sided").boolean();
     if (field.has("emission_two_sided"))
         spec.emission_two_sided = field.child("emission_two_sided").boolean();
+    spec.lightmap_mode = parse_lightmap_mode(field);
     if (spec.emission && spec.emission_flux_lm)
         field.child("emission_flux_lm").fail("give 'emission' or 'emission_flux_lm', not both");
     if (spec.emission_color && !spec.emission_flux_lm)
@@ -472,8 +485,10 @@ Rgb parse_light_color(const Field& parent) {
 }
 
 PointLight parse_point_light(const Field& field, double metres_per_unit) {
-    field.expect_keys({"name", "position", "intensity_cd", "flux_lm", "color", "spot"});
+    field.expect_keys(
+        {"name", "position", "intensity_cd", "flux_lm", "color", "spot", "lightmap_mode"});
     PointLight light;
+    light.lightmap_mode = parse_lightmap_mode(field).value_or(LightmapMode::all);
     light.name = field.has("name") ? field.child("name").string() : field.path();
     light.position = field.required("position").vec3() * metres_per_unit;
     if (field.has("spot"))
@@ -715,7 +730,7 @@ void parse_sky(const Field& sky, const Daylight& daylight, Scene& scene) {
     sky.expect_keys({"model", "type", "horizontal_illuminance_lx", "zenith_luminance_cd_m2",
                      "ground_reflectance", "ground", "horizon", "time", "sun_direction", "color",
                      "direct_normal_w_m2", "diffuse_horizontal_w_m2", "direct_normal_lx",
-                     "diffuse_horizontal_lx", "day_of_year"});
+                     "diffuse_horizontal_lx", "day_of_year", "lightmap_mode"});
     const SkyModel model = parse_sky_model(sky);
     const std::optional<SunPlacement> placement = parse_sky_sun(sky, model, daylight, scene);
     if (std::holds_alternative<PerezSky>(model))
@@ -750,8 +765,9 @@ void parse_sky(const Field& sky, const Daylight& daylight, Scene& scene) {
 // only: radiometric input carries its colour in its channels.
 Sun parse_sun(const Field& field, const Daylight& daylight) {
     field.expect_keys({"direction", "time", "illuminance_lx", "irradiance_w_m2", "color",
-                       "angular_diameter_deg"});
+                       "angular_diameter_deg", "lightmap_mode"});
     Sun sun;
+    sun.lightmap_mode = parse_lightmap_mode(field).value_or(LightmapMode::all);
     const std::optional<SunPlacement> placement = parse_sun_placement(field, "direction", daylight);
     sun.direction = placement ? placement->direction : field.required("direction").vec3();
     if (field.has("time") && altitude_deg(sun.direction, daylight.compass) <= 0)
@@ -1053,8 +1069,10 @@ void parse_render(const Field& root, double metres_per_unit, Scene& scene) {
 }
 
 LightmapSettings parse_lightmap(const Field& field) {
-    field.expect_keys({"size", "directional"});
+    field.expect_keys({"size", "directional", "gather"});
     LightmapSettings lightmap;
+    if (field.has("gather"))
+        lightmap.gather = int(field.child("gather").integer(0, 1 << 16));
     if (field.has("size"))
         lightmap.atlas_size = int(field.child("size").integer(16, 16384));
     if (field.has("directional"))
@@ -1142,6 +1160,17 @@ void parse_annual(const Field& field, SceneSpec& spec) {
             spec.blinds.push_back(parse_material(entry, name));
 }
 
+/// The sky's `lightmap_mode`, on the sky and on the sun of a Perez sky (which makes its own).
+void apply_sky_lightmap_mode(const Field& sky, Scene& scene) {
+    const std::optional<LightmapMode> mode = parse_lightmap_mode(sky);
+    if (!mode)
+        return;
+    scene.sky->lightmap_mode = *mode;
+    const bool perez = sky.has("direct_normal_w_m2") || sky.has("direct_normal_lx");
+    if (perez && scene.sun)
+        scene.sun->lightmap_mode = *mode;
+}
+
 /// point_lights, site, sun, sky, sensors, camera and image, mesher, solver.
 void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
     const double scale = spec.metres_per_unit;
@@ -1156,6 +1185,8 @@ void parse_settings(const Field& root, const Vec3& up, SceneSpec& spec) {
         scene.sun = parse_sun(root.child("sun"), daylight);
     if (root.has("sky"))
         parse_sky(root.child("sky"), daylight, scene);
+    if (root.has("sky"))
+        apply_sky_lightmap_mode(root.child("sky"), scene);
     if (root.has("sensors"))
         parse_sensors(root.child("sensors"), scale, spec);
     if (root.has("camera"))

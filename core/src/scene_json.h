@@ -24,6 +24,7 @@ struct MaterialSpec {
     std::optional<bool> emission_two_sided;
     /// Set when the entry gives `type`: the material's lobe (none for "diffuse").
     std::optional<std::optional<Lobe>> lobe;
+    std::optional<LightmapMode> lightmap_mode; ///< `lightmap_mode` (issue #29)
 };
 
 /// \brief A `polygons` entry, vertices already in metres.

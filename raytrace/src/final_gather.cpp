@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -64,6 +65,15 @@ struct LastScatter {
     bool caustic() const { return after_receiver && through_specular; }
 };
 
+/// Where a path stands before its next ray: a camera ray's start, or the first bounce of a
+/// texel's gather path.
+struct PathState {
+    Vec3 origin, dir;
+    Rgb beta{1.0f};
+    LastScatter last;
+    int bounces = 0, diffuse_bounces = 0;
+};
+
 class PathTracer {
 public:
     /// \p caustics: the photon map of the final gather, null for the other modes.
@@ -81,11 +91,48 @@ public:
 
     /// Radiance arriving at the camera along \p ray.
     Rgb trace(const CameraRay& ray, Pcg32& rng) const {
-        Rgb radiance, beta{1.0f};
-        Vec3 origin = ray.origin, dir = ray.direction;
-        LastScatter last;
-        int diffuse_bounces = 0;
-        for (int bounces = 0;;) {
+        PathState path;
+        path.origin = ray.origin;
+        path.dir = ray.direction;
+        return follow(path, rng);
+    }
+
+    /// Irradiance (W/m²) at \p s from one light sample per source kind and one path along the
+    /// cosine-distributed direction of \p u ∈ [0, 1)²: π times the radiance a white
+    /// Lambertian surface there reflects (f = 1/π), so the surface's own material, emission
+    /// and lobes play no part.
+    Rgb irradiance(const SurfaceHit& s, const Vec2& u, Pcg32& rng) const {
+        const Bsdf bsdf(white_, s.shading, TransportMode::radiance);
+        const Vec3 wo = s.shading;
+        Rgb radiance = direct(bsdf, s, wo, rng);
+        const auto sample = bsdf.sample(wo, 0.0, u);
+        if (sample && !sample->weight.is_black() &&
+            SurfaceGeometry::geometric_side_agrees(s, wo, sample->wi, false)) {
+            PathState path;
+            path.origin = surfaces_.offset(s, sample->wi);
+            path.dir = sample->wi;
+            path.beta = sample->weight;
+            path.last.delta = path.last.only_delta = false;
+            path.last.pdf = sample->pdf;
+            path.last.sky_normal = s.shading;
+            path.bounces = path.diffuse_bounces = 1;
+            path.last.gather = options_.gather == GatherMode::final_gather &&
+                               path.diffuse_bounces > options_.gather_depth;
+            path.last.near_distance = k_near_gather_sizes * surfaces_.element_size(s.element);
+            radiance += follow(path, rng);
+        }
+        return radiance * float(k_pi);
+    }
+
+private:
+    /// Radiance arriving along \p path's ray, and what the path scatters on from there.
+    Rgb follow(PathState path, Pcg32& rng) const {
+        Rgb radiance;
+        Rgb& beta = path.beta;
+        Vec3 &origin = path.origin, &dir = path.dir;
+        LastScatter& last = path.last;
+        int& diffuse_bounces = path.diffuse_bounces;
+        for (int bounces = path.bounces;;) {
             const auto hit = rt_.intersect(Vec3f(origin), Vec3f(dir), 0.0f, k_infinity);
             if (hit.front_element < 0) {
                 if (!last.caustic())
@@ -149,7 +196,6 @@ public:
         return radiance;
     }
 
-private:
     /// Fraction of the light that passes from \p from along unit \p dir over \p distance
     /// (panes of glazing attenuate, opaque surfaces block).
     float transmittance(const Vec3& from, const Vec3& dir, double distance) const {
@@ -312,6 +358,7 @@ private:
     AreaLights lights_;
     SurfaceGeometry surfaces_;
     const CausticMap* caustics_ = nullptr;
+    Material white_{"white", Rgb(1.0f)}; ///< the texels' gather surface: f = 1/π
     bool has_glazing_ = false;
     double sun_cos_max_ = 1, sun_solid_angle_ = 0;
 };
@@ -411,6 +458,58 @@ Image render_final_gather(const EmbreeScene& rt, const Scene& scene, const Solut
               enum_name(options.gather), image.width, image.height, sampler.strata * sampler.strata,
               rt.rays_traced() - rays_before);
     return image;
+}
+
+namespace {
+
+// Names a point's gather stream by its coordinates and normal: the same point draws the same
+// paths whichever batch or thread gathers it.
+std::uint64_t point_stream_id(const Vec3& p, const Vec3& n) {
+    const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+    return hash_words({bits(p.x), bits(p.y), bits(p.z), bits(n.x), bits(n.y), bits(n.z)});
+}
+
+} // namespace
+
+std::vector<Rgb> gather_irradiance_at(const EmbreeScene& rt, const Scene& scene,
+                                      const Solution& solution, std::span<const Vec3> points,
+                                      std::span<const Vec3> normals, int samples,
+                                      const Context& ctx) {
+    if (points.size() != normals.size())
+        throw InternalError("gather_irradiance_at: points and normals differ in number");
+    if (samples < 1)
+        throw ConfigError(fmt::format("gather: {} samples, expected at least 1", samples));
+    RenderOptions options;
+    options.gather = GatherMode::final_gather;
+    check_options(options, solution, rt.mesh());
+    const PathTracer tracer(rt, scene, solution, options, nullptr);
+    const SurfaceGeometry surfaces(rt, scene);
+    const int strata = strata_per_axis(samples);
+    // The surface under a point: a short ray down its normal, as the lightmap fill finds it.
+    const double height = 1e-4 * std::max(rt.mesh().scene_diagonal, 1e-3);
+    std::vector<Rgb> out(points.size());
+    run_in_arena(ctx, [&] {
+        parallel_for_index(points.size(), 4, [&](std::size_t i) {
+            const Vec3 from = points[i] + normals[i] * height;
+            const auto hit = rt.intersect(Vec3f(from), Vec3f(-normals[i]), 0.0f, float(2 * height));
+            if (hit.element < 0)
+                return;
+            const SurfaceHit s = surfaces.surface_of(hit, from, -normals[i]);
+            const Pcg32 stream = Pcg32::for_stream(
+                RngPurpose::texel_paths, point_stream_id(points[i], normals[i]), 0, 0, ctx.seed);
+            RgbD sum;
+            for (int k = 0; k < strata * strata; ++k) {
+                Pcg32 rng = stream;
+                rng.advance(std::int64_t(k) << 16);
+                const Vec2 u{(k % strata + rng.next_double()) / strata,
+                             (k / strata + rng.next_double()) / strata};
+                sum += RgbD(tracer.irradiance(s, u, rng));
+            }
+            const double n = double(strata) * double(strata);
+            out[i] = Rgb(float(sum.r / n), float(sum.g / n), float(sum.b / n));
+        });
+    });
+    return out;
 }
 
 } // namespace penumbra::raytrace

@@ -41,6 +41,7 @@ TEST(EnumNames, EverySpellingParsesToItsValueAndBack) {
     expect_round_trip<Clustering>();
     expect_round_trip<SolverIteration>();
     expect_round_trip<PixelFilter>();
+    expect_round_trip<LightmapMode>();
     EXPECT_EQ(parse_enum<SolverMethod>("gathering"), SolverMethod::gauss_seidel);
     EXPECT_EQ(enum_name(SolverMethod::gauss_seidel), "gauss_seidel");
     EXPECT_EQ(enum_name_list<Clustering>(), "auto, on, off");
@@ -54,6 +55,7 @@ TEST(EnumNames, SceneFormatDocumentsEverySpelling) {
     expect_documented<Clustering>(doc, "docs/scene-format.md");
     expect_documented<SolverIteration>(doc, "docs/scene-format.md");
     expect_documented<PixelFilter>(doc, "docs/scene-format.md");
+    expect_documented<LightmapMode>(doc, "docs/scene-format.md");
 }
 
 TEST(EnumNames, ReadmeListsEveryCliChoice) {

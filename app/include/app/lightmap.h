@@ -31,6 +31,9 @@ struct LightmapOptions {
     bool directional = false;
     /// Stitch the seams between charts after dilation (lightmap/seams.h).
     bool stitch_seams = true;
+    /// `--gather N`: each texel sample's irradiance from N final-gather paths
+    /// (raytrace::gather_irradiance_at) instead of direct + the solution's indirect; 0: off.
+    int gather_samples = 0;
 };
 
 /// \brief What filling found, summed over the atlases.

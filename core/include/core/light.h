@@ -11,6 +11,7 @@
 #include <string>
 #include <variant>
 
+#include "core/lightmap_mode.h"
 #include "core/rgb.h"
 #include "core/vec.h"
 
@@ -34,6 +35,7 @@ struct PointLight {
     Vec3 position; ///< metres
     Rgb intensity; ///< radiant intensity (on the axis for a spot), W/sr per channel
     std::optional<SpotCone> spot;
+    LightmapMode lightmap_mode = LightmapMode::all; ///< what lightmaps bake of it (issue #29)
 
     /// \brief Intensity toward the unit direction \p unit_dir (from the light) relative to
     ///        \p intensity: 1 for an isotropic light, in [0, 1] for a spot.
@@ -57,6 +59,7 @@ struct Sun {
     Vec3 direction{0, 0, 1};             ///< unit, from the scene toward the disc's centre
     Rgb irradiance;                      ///< direct normal irradiance, W/m² per channel
     double angular_diameter_deg = 0.533; ///< in [0, 10]; 0 = parallel light (hard shadows)
+    LightmapMode lightmap_mode = LightmapMode::all; ///< what lightmaps bake of it (issue #29)
 
     /// \brief Angular radius of the disc, radians.
     double angular_radius() const;

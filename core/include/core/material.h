@@ -9,6 +9,7 @@
 #include <string>
 #include <variant>
 
+#include "core/lightmap_mode.h"
 #include "core/rgb.h"
 
 namespace penumbra {
@@ -105,6 +106,8 @@ struct Material {
     /// that leaves the other side diffusely (Radiance's `trans`: blinds, diffusing glass).
     /// ρ + τ < 1 per channel; a material with τ > 0 is two-sided.
     Rgb diffuse_transmittance{};
+    /// What lightmaps bake of its emission (issue #29); only emitting materials use it.
+    LightmapMode lightmap_mode = LightmapMode::all;
 };
 
 /// \brief What the radiosity solver transports of a material: its diffuse part, and for

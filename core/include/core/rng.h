@@ -25,6 +25,7 @@ enum class RngPurpose : std::uint64_t {
     probe_directions = 13, ///< light probes' gather rays (issue #29)
     texel_gather = 14,     ///< directional lightmaps' gather rays (issue #29)
     caustic_photon = 15,   ///< caustic photons of the final gather (issue #28)
+    texel_paths = 16,      ///< `penumbra lightmap --gather`: final-gather paths (issue #29)
 };
 
 /// SplitMix64 finaliser: a strong 64-bit mix.

@@ -219,6 +219,7 @@ struct RenderSettings {
 struct LightmapSettings {
     int atlas_size = 1024;    ///< texels along each side of an atlas
     bool directional = false; ///< also the L1 SH atlases of incident radiance
+    int gather = 0; ///< > 0: final-gather paths per texel sample instead of direct + indirect
 };
 
 /// \brief A box lattice of light probes (scene key `probes.grid`): along each axis

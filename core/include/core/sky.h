@@ -96,6 +96,7 @@ struct Sky {
     /// channel; unset: nothing below the horizon (the scene's own ground geometry receives the
     /// sky), and Horizon::radiance_blend has nothing to blend with (the horizon stays sharp).
     std::optional<double> ground_radiance;
+    LightmapMode lightmap_mode = LightmapMode::all; ///< what lightmaps bake of it (issue #29)
 
     /// \brief Radiance arriving from the unit direction \p dir (pointing away from the scene,
     ///        toward the sky or the ground), W/(sr·m²) per channel. Sharp horizon: the sky

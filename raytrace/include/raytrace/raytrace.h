@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/context.h"
@@ -137,6 +138,21 @@ CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene, 
 /// \throws ConfigError for spp < 1 or a negative gather depth.
 Image render_final_gather(const EmbreeScene& rt, const Scene& scene, const Solution& solution,
                           const Camera& camera, const RenderOptions& options, const Context& ctx);
+
+/// \brief Irradiance (W/m²) at each of \p points on the surface facing \p normals (unit), by
+///        the final gather's paths (issue #29's `penumbra lightmap --gather`): \p samples
+///        (rounded up to a square) stratified cosine-distributed directions, each a path of
+///        render_final_gather() with light sampled from every source at its start (multiple
+///        importance sampling) and the solution read one diffuse bounce away; no caustic
+///        photons. The surface under a point is found by a short ray down its normal from 10⁻⁴
+///        of the scene's diagonal above it; a point with none gets 0. Each point draws from a
+///        stream named by its coordinates and normal (RngPurpose::texel_paths): the
+///        same bits for any thread count and batching.
+/// \throws ConfigError for \p samples < 1.
+std::vector<Rgb> gather_irradiance_at(const EmbreeScene& rt, const Scene& scene,
+                                      const Solution& solution, std::span<const Vec3> points,
+                                      std::span<const Vec3> normals, int samples,
+                                      const Context& ctx);
 
 } // namespace penumbra::raytrace
 

@@ -112,6 +112,13 @@ std::vector<SensorReading> evaluate_sensors(const Scene& scene, const RadiosityM
                                             const Solution& solution,
                                             const VisibilityQuery& visibility, const Context& ctx);
 
+/// \brief Which sources direct_irradiance_at() gathers from (issue #29's mixed lighting).
+struct DirectLightOptions {
+    /// Unset: every source; else only those for which it returns true (an emitting element
+    /// is the AreaSource of its patch's polygon). Called before the gather, never per point.
+    std::function<bool(const LightSource&)> include;
+};
+
 /// \brief Direct irradiance (W/m²) at each of \p points on a surface facing \p normals (unit),
 ///        gathered as the sensors gather it: analytic form factors to the emitting elements
 ///        of \p sources (any mesh of the scene's surfaces: the one before hierarchical
@@ -120,10 +127,10 @@ std::vector<SensorReading> evaluate_sensors(const Scene& scene, const RadiosityM
 ///        offset above the point. Each point draws from a stream named by its coordinates and
 ///        normal (RngPurpose::texel_visibility): a point's value depends neither on the thread
 ///        count nor on the other points. Parallel in an arena from \p ctx. For lightmap
-///        texels (issue #29).
+///        texels (issue #29). \p options may leave sources out (mixed lighting).
 std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& sources,
                                       const VisibilityQuery& visibility,
                                       std::span<const Vec3> points, std::span<const Vec3> normals,
-                                      const Context& ctx);
+                                      const Context& ctx, const DirectLightOptions& options = {});
 
 } // namespace penumbra::solver

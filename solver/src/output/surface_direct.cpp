@@ -4,6 +4,7 @@
 #include "solver/solver.h"
 
 #include <bit>
+#include <utility>
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -25,12 +26,32 @@ std::uint64_t point_stream_id(const Vec3& p, const Vec3& n) {
         {bits_of(p.x), bits_of(p.y), bits_of(p.z), bits_of(n.x), bits_of(n.y), bits_of(n.z)});
 }
 
+// Removes from \p sources those \p options leaves out: emitting elements (by their polygon),
+// point lights, the sun and the sky.
+void leave_out(GatherSources& sources, const RadiosityMesh& mesh,
+               const DirectLightOptions& options) {
+    if (!options.include)
+        return;
+    std::erase_if(sources.emitters, [&](std::uint32_t e) {
+        return !options.include(AreaSource{mesh.patch_of(e).polygon});
+    });
+    std::vector<PointLight> lights;
+    for (std::size_t i = 0; i < sources.lights.size(); ++i)
+        if (options.include(PointSource{std::uint32_t(i)}))
+            lights.push_back(sources.lights[i]);
+    sources.lights = std::move(lights);
+    if (sources.sun && !options.include(SunSource{}))
+        sources.sun.reset();
+    if (sources.sky && !options.include(SkySource{}))
+        sources.sky.reset();
+}
+
 } // namespace
 
 std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& mesh,
                                       const VisibilityQuery& visibility,
                                       std::span<const Vec3> points, std::span<const Vec3> normals,
-                                      const Context& ctx) {
+                                      const Context& ctx, const DirectLightOptions& options) {
     if (points.size() != normals.size())
         throw InternalError("direct_irradiance_at: points and normals differ in number");
     std::vector<Rgb> out(points.size());
@@ -41,7 +62,8 @@ std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& m
         std::vector<Rgb> emission(mesh.element_count());
         for (std::size_t e = 0; e < mesh.element_count(); ++e)
             emission[e] = mesh.patch_of(std::uint32_t(e)).emission;
-        const GatherSources sources = direct_sources(scene, emission);
+        GatherSources sources = direct_sources(scene, emission);
+        leave_out(sources, mesh, options);
         const int rays = scene.solver.visibility_rays;
         parallel_for_index(points.size(), 16, [&](std::size_t i) {
             const GatherPoint p{points[i], normals[i], point_stream_id(points[i], normals[i]),

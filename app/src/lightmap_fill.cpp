@@ -41,10 +41,11 @@ Vec3 inset_point(const std::array<Vec3, 3>& v, const Vec3& w, double inset) {
 
 // One batch of texels' samples, k_texel_samples_per_axis² slots per texel.
 struct SampleBatch {
-    std::vector<std::uint8_t> count;   ///< per texel: its samples on the chart
-    std::vector<std::uint8_t> visible; ///< per slot: on its polygon's own element
-    std::vector<Vec3> point, normal;   ///< per slot: gather point and normal
-    std::vector<Rgb> indirect;         ///< per slot
+    std::vector<std::uint8_t> count;    ///< per texel: its samples on the chart
+    std::vector<std::uint8_t> visible;  ///< per slot: on its polygon's own element
+    std::vector<Vec3> point, normal;    ///< per slot: gather point and normal
+    std::vector<std::uint32_t> polygon; ///< per slot: the input polygon it lies on
+    std::vector<Rgb> indirect;          ///< per slot
 };
 
 SampleBatch locate_batch(const Solution& solution, const raytrace::EmbreeScene& rt,
@@ -58,6 +59,7 @@ SampleBatch locate_batch(const Solution& solution, const raytrace::EmbreeScene& 
     b.visible.assign((end - begin) * slots, 0);
     b.point.resize(b.visible.size());
     b.normal.resize(b.visible.size());
+    b.polygon.resize(b.visible.size());
     b.indirect.resize(b.visible.size());
     parallel_for_index(end - begin, 64, [&](std::size_t k) {
         const Texel& texel = texels.texels[begin + k];
@@ -75,6 +77,7 @@ SampleBatch locate_batch(const Solution& solution, const raytrace::EmbreeScene& 
             b.visible[slot] = 1;
             b.point[slot] = found->gather_point;
             b.normal[slot] = s.normal;
+            b.polygon[slot] = chart.triangles[s.triangle].polygon;
             b.indirect[slot] = found->indirect;
         }
     });
@@ -84,18 +87,20 @@ SampleBatch locate_batch(const Solution& solution, const raytrace::EmbreeScene& 
 // Direct light at the batch's visible samples (in slot order), then each texel's mean;
 // marks the texels with a value in \p valued and counts into \p stats.
 void fill_batch(const Scene& scene, const raytrace::EmbreeScene& rt, const RadiosityMesh& sources,
-                const AtlasTexels& texels, std::size_t begin, const SampleBatch& b,
-                const Context& ctx, Image& image, std::vector<std::uint8_t>& valued,
-                LightmapCounts& stats) {
+                const EmittersSeen& emitters_seen, const AtlasTexels& texels, std::size_t begin,
+                const SampleBatch& b, const Context& ctx, Image& image,
+                std::vector<std::uint8_t>& valued, LightmapCounts& stats) {
     constexpr std::size_t slots = std::size_t(k_texel_samples_per_axis * k_texel_samples_per_axis);
     std::vector<Vec3> points, normals;
+    std::vector<std::uint32_t> polygons;
     for (std::size_t slot = 0; slot < b.visible.size(); ++slot)
         if (b.visible[slot]) {
             points.push_back(b.point[slot]);
             normals.push_back(b.normal[slot]);
+            polygons.push_back(b.polygon[slot]);
         }
-    const std::vector<Rgb> direct =
-        solver::direct_irradiance_at(scene, sources, rt, points, normals, ctx);
+    const std::vector<Rgb> direct = solver::direct_irradiance_at(
+        scene, sources, rt, points, normals, polygons, emitters_seen, ctx);
     std::size_t next = 0;
     for (std::size_t k = 0; k < b.count.size(); ++k) {
         RgbD sum;
@@ -206,9 +211,9 @@ std::optional<MeshSample> locate_sample(const raytrace::EmbreeScene& rt, const S
 }
 
 Image fill_atlas(const Scene& scene, const Solution& solution, const raytrace::EmbreeScene& rt,
-                 const RadiosityMesh& sources, const lightmap::Charts& charts,
-                 const lightmap::AtlasLayout& layout, const lightmap::AtlasTexels& texels,
-                 const Context& ctx, LightmapCounts& counts) {
+                 const RadiosityMesh& sources, const EmittersSeen& emitters_seen,
+                 const lightmap::Charts& charts, const lightmap::AtlasLayout& layout,
+                 const lightmap::AtlasTexels& texels, const Context& ctx, LightmapCounts& counts) {
     Image image(texels.size, texels.size);
     std::vector<std::uint8_t> valued(image.pixels.size(), 0);
     LightmapCounts own;
@@ -220,7 +225,8 @@ Image fill_atlas(const Scene& scene, const Solution& solution, const raytrace::E
             const SampleBatch batch = run_in_arena(ctx, [&] {
                 return locate_batch(solution, rt, charts, layout, texels, begin, end);
             });
-            fill_batch(scene, rt, sources, texels, begin, batch, ctx, image, valued, own);
+            fill_batch(scene, rt, sources, emitters_seen, texels, begin, batch, ctx, image, valued,
+                       own);
             progress.update(double(end) / double(texels.texels.size()));
         }
     }

@@ -126,4 +126,17 @@ std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& s
                                       std::span<const Vec3> points, std::span<const Vec3> normals,
                                       const Context& ctx);
 
+/// \brief direct_irradiance_at() with the area emitters narrowed per point: point i gathers
+///        from the emitting elements of \p sources listed in emitter_lists[list_of_point[i]]
+///        (increasing element indices) instead of all of them; point lights, the sun and the
+///        sky as before. A point's value is bitwise the full gather's when the emitters left
+///        out are those its probe rays find wholly hidden (the stream is drawn only for
+///        emitters in its penumbra, in element order).
+std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& sources,
+                                      const VisibilityQuery& visibility,
+                                      std::span<const Vec3> points, std::span<const Vec3> normals,
+                                      std::span<const std::uint32_t> list_of_point,
+                                      std::span<const std::vector<std::uint32_t>> emitter_lists,
+                                      const Context& ctx);
+
 } // namespace penumbra::solver

@@ -31,8 +31,20 @@ std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& m
                                       const VisibilityQuery& visibility,
                                       std::span<const Vec3> points, std::span<const Vec3> normals,
                                       const Context& ctx) {
+    return direct_irradiance_at(scene, mesh, visibility, points, normals, {}, {}, ctx);
+}
+
+std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& mesh,
+                                      const VisibilityQuery& visibility,
+                                      std::span<const Vec3> points, std::span<const Vec3> normals,
+                                      std::span<const std::uint32_t> list_of_point,
+                                      std::span<const std::vector<std::uint32_t>> emitter_lists,
+                                      const Context& ctx) {
     if (points.size() != normals.size())
         throw InternalError("direct_irradiance_at: points and normals differ in number");
+    if (!list_of_point.empty() && list_of_point.size() != points.size())
+        throw InternalError(
+            "direct_irradiance_at: points and their emitter lists differ in number");
     std::vector<Rgb> out(points.size());
     if (out.empty())
         return out;
@@ -46,7 +58,9 @@ std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& m
         parallel_for_index(points.size(), 16, [&](std::size_t i) {
             const GatherPoint p{points[i], normals[i], point_stream_id(points[i], normals[i]),
                                 RngPurpose::texel_visibility};
-            out[i] = gather_direct(geo, sources, visibility, p, rays, ctx.seed);
+            const std::vector<std::uint32_t>* emitters =
+                list_of_point.empty() ? nullptr : &emitter_lists[list_of_point[i]];
+            out[i] = gather_direct(geo, sources, visibility, p, rays, ctx.seed, emitters);
         });
         return out;
     });

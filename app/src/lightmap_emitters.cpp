@@ -18,6 +18,7 @@ struct Emitter {
 struct PolygonProbe {
     Vec3 normal;
     std::vector<Vec3> points; ///< element centroids, lifted off the polygon
+    bool planar = true;       ///< every element's normal the first one's
 };
 
 std::vector<Emitter> emitters_of(const RadiosityMesh& sources, double lift) {
@@ -55,6 +56,8 @@ std::vector<PolygonProbe> probes_of(const RadiosityMesh& mesh, double lift) {
         if (list.empty())
             continue;
         out[p].normal = mesh.patch_of(list[0]).normal;
+        for (const std::uint32_t e : list)
+            out[p].planar = out[p].planar && dot(mesh.patch_of(e).normal, out[p].normal) > 1 - 1e-6;
         const std::size_t n = std::min<std::size_t>(list.size(), k_emitter_probe_lines);
         for (std::size_t k = 0; k < n; ++k) {
             const auto& t = mesh.triangles[list[k * list.size() / n]];
@@ -94,6 +97,13 @@ std::vector<std::vector<std::uint32_t>> emitters_seen_by_polygons(const Radiosit
             const PolygonProbe& probe = probes[p];
             if (probe.points.empty())
                 return;
+            // A curved polygon's parts face different ways: its probes would not speak for
+            // all of it, so it keeps every emitter.
+            if (!probe.planar) {
+                for (const Emitter& emitter : emitters)
+                    seen[p].push_back(emitter.element);
+                return;
+            }
             std::vector<std::uint32_t> candidates;
             std::vector<Segment> lines;
             for (std::uint32_t i = 0; i < emitters.size(); ++i) {

@@ -17,7 +17,8 @@ namespace penumbra::app {
 ///        it, with at least one of k_emitter_probe_lines lines open between points spread over
 ///        the polygon's elements (centroids) and points on the emitter (centroid, corners). An
 ///        emitter left out is one whose every probe line a wall or other surface blocks (a lamp
-///        in another room). Deterministic (no random numbers); parallel in \p ctx's arena.
+///        in another room). A polygon whose elements face different ways (curved) keeps every
+///        emitter. Deterministic (no random numbers); parallel in \p ctx's arena.
 std::vector<std::vector<std::uint32_t>> emitters_seen_by_polygons(const RadiosityMesh& mesh,
                                                                   const RadiosityMesh& sources,
                                                                   const VisibilityQuery& visibility,

@@ -39,7 +39,7 @@ std::vector<Emitter> emitters_of(const RadiosityMesh& sources, double lift) {
     return out;
 }
 
-// Per polygon, up to k_emitter_probe_lines element centroids spread over its front elements.
+// Per polygon, its probe points: two per front element, lifted off the polygon.
 std::vector<PolygonProbe> probes_of(const RadiosityMesh& mesh, double lift) {
     std::uint32_t polygons = 0;
     for (const Patch& p : mesh.patches)
@@ -58,11 +58,14 @@ std::vector<PolygonProbe> probes_of(const RadiosityMesh& mesh, double lift) {
         out[p].normal = mesh.patch_of(list[0]).normal;
         for (const std::uint32_t e : list)
             out[p].planar = out[p].planar && dot(mesh.patch_of(e).normal, out[p].normal) > 1 - 1e-6;
-        const std::size_t n = std::min<std::size_t>(list.size(), k_emitter_probe_lines);
-        for (std::size_t k = 0; k < n; ++k) {
-            const auto& t = mesh.triangles[list[k * list.size() / n]];
+        // Every element gives two points, its centroid and one corner pulled a fifth of the way
+        // in: a lamp seen through a door from part of a corridor's floor shows on some of them.
+        for (std::size_t k = 0; k < list.size(); ++k) {
+            const auto& t = mesh.triangles[list[k]];
             const Vec3 c = (mesh.vertex(t[0]) + mesh.vertex(t[1]) + mesh.vertex(t[2])) / 3.0;
+            const Vec3 corner = mesh.vertex(t[k % 3]) * 0.8 + c * 0.2;
             out[p].points.push_back(c + out[p].normal * lift);
+            out[p].points.push_back(corner + out[p].normal * lift);
         }
     }
     return out;
@@ -104,25 +107,23 @@ std::vector<std::vector<std::uint32_t>> emitters_seen_by_polygons(const Radiosit
                     seen[p].push_back(emitter.element);
                 return;
             }
-            std::vector<std::uint32_t> candidates;
+            // Per emitter, a line from every probe point to its targets in turn, until one is
+            // open.
             std::vector<Segment> lines;
-            for (std::uint32_t i = 0; i < emitters.size(); ++i) {
-                if (!facing(probe, emitters[i]))
+            std::vector<std::uint8_t> blocked;
+            for (const Emitter& emitter : emitters) {
+                if (!facing(probe, emitter))
                     continue;
-                candidates.push_back(i);
-                for (int k = 0; k < k_emitter_probe_lines; ++k) {
-                    const Vec3& from = probe.points[std::size_t(k) % probe.points.size()];
-                    const Vec3& to = emitters[i].targets[std::size_t(k) % 4];
+                lines.clear();
+                for (std::size_t k = 0; k < probe.points.size(); ++k) {
+                    const Vec3& from = probe.points[k];
+                    const Vec3& to = emitter.targets[k % 4];
                     lines.push_back({Vec3f(from), Vec3f(to - from), 0.0f, 1.0f});
                 }
-            }
-            std::vector<std::uint8_t> blocked(lines.size());
-            visibility.occluded(lines, blocked);
-            for (std::size_t c = 0; c < candidates.size(); ++c) {
-                const auto first = blocked.begin() + std::ptrdiff_t(c * k_emitter_probe_lines);
-                if (!std::all_of(first, first + k_emitter_probe_lines,
-                                 [](std::uint8_t b) { return b != 0; }))
-                    seen[p].push_back(emitters[candidates[c]].element);
+                blocked.resize(lines.size());
+                visibility.occluded(lines, blocked);
+                if (std::any_of(blocked.begin(), blocked.end(), [](std::uint8_t b) { return !b; }))
+                    seen[p].push_back(emitter.element);
             }
         });
     });

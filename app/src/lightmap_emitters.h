@@ -14,18 +14,15 @@ namespace penumbra::app {
 
 /// \brief Per input polygon of \p mesh (indexed by Patch::polygon), the emitting elements of
 ///        \p sources (increasing) that its front side may see: those facing it, and in front of
-///        it, with at least one of k_emitter_probe_lines lines open between points spread over
-///        the polygon's elements (centroids) and points on the emitter (centroid, corners). An
-///        emitter left out is one whose every probe line a wall or other surface blocks (a lamp
-///        in another room). A polygon whose elements face different ways (curved) keeps every
-///        emitter. Deterministic (no random numbers); parallel in \p ctx's arena.
+///        it, with at least one open line from the polygon's probe points (each element's
+///        centroid and one of its corners pulled a fifth of the way in) to the emitter's
+///        centroid and corners (in turn). An emitter left out is one whose every probe line a
+///        wall or other surface blocks (a lamp in another room). A polygon whose elements face
+///        different ways (curved) keeps every emitter. Deterministic (no random numbers);
+///        parallel in \p ctx's arena.
 std::vector<std::vector<std::uint32_t>> emitters_seen_by_polygons(const RadiosityMesh& mesh,
                                                                   const RadiosityMesh& sources,
                                                                   const VisibilityQuery& visibility,
                                                                   const Context& ctx);
-
-/// Probe lines per (polygon, emitter) pair: from 8 points of the polygon to 4 points of the
-/// emitter in turn.
-inline constexpr int k_emitter_probe_lines = 8;
 
 } // namespace penumbra::app

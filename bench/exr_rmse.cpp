@@ -1,43 +1,142 @@
 // exr_rmse: the RGB root-mean-square difference of two linear EXR images of one size, over the
 // pixels whose reference luminance is at most 0.9 × LIGHT (the pixels that show the light
 // left out, as tests/app/reference_test.cpp measures the Cornell box against Cycles).
+// With --split it also prints the RMSE over the light's edge pixels (those left in that touch
+// a left-out pixel, 8-neighbourhood) and over the rest; --error OUT.exr writes the per-pixel
+// difference IMAGE − REFERENCE (left-out pixels 0) and --worst N lists the N pixels of largest
+// squared difference, to see where the error is.
 //
-//   exr_rmse IMAGE.exr REFERENCE.exr [LIGHT_LUMINANCE]      (radiance units, W/(sr·m²))
+//   exr_rmse IMAGE.exr REFERENCE.exr [LIGHT_LUMINANCE] [--split] [--error OUT.exr] [--worst N]
+//   (radiance units, W/(sr·m²))
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <limits>
+#include <numeric>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "core/rgb.h"
 
-int main(int argc, char** argv) {
-    using namespace penumbra;
-    if (argc != 3 && argc != 4) {
-        std::fprintf(stderr, "usage: exr_rmse IMAGE.exr REFERENCE.exr [LIGHT_LUMINANCE]\n");
-        return 2;
+namespace {
+
+using namespace penumbra;
+
+struct Options {
+    std::string image, reference, error;
+    double light = std::numeric_limits<double>::infinity();
+    bool split = false;
+    std::size_t worst = 0;
+};
+
+Options parse(int argc, char** argv) {
+    Options o;
+    std::vector<std::string> positional;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--split")
+            o.split = true;
+        else if (a == "--error" && i + 1 < argc)
+            o.error = argv[++i];
+        else if (a == "--worst" && i + 1 < argc)
+            o.worst = std::stoul(argv[++i]);
+        else
+            positional.push_back(a);
     }
+    if (positional.size() < 2 || positional.size() > 3)
+        throw std::invalid_argument("usage: exr_rmse IMAGE.exr REFERENCE.exr [LIGHT_LUMINANCE] "
+                                    "[--split] [--error OUT.exr] [--worst N]");
+    o.image = positional[0];
+    o.reference = positional[1];
+    if (positional.size() == 3)
+        o.light = std::stod(positional[2]);
+    return o;
+}
+
+// Per pixel: 0 measured, 1 measured on the light's edge, 2 left out (shows the light).
+std::vector<int> classify(const Image& ref, double light) {
+    std::vector<int> kind(ref.pixels.size(), 0);
+    for (std::size_t i = 0; i < ref.pixels.size(); ++i)
+        if (to_photometric(ref.pixels[i]) / k_luminous_efficacy_lm_per_w > 0.9 * light)
+            kind[i] = 2;
+    for (int y = 0; y < ref.height; ++y)
+        for (int x = 0; x < ref.width; ++x) {
+            int& k = kind[std::size_t(y) * std::size_t(ref.width) + std::size_t(x)];
+            for (int dy = -1; dy <= 1 && k == 0; ++dy)
+                for (int dx = -1; dx <= 1 && k == 0; ++dx) {
+                    const int u = x + dx, v = y + dy;
+                    if (u >= 0 && v >= 0 && u < ref.width && v < ref.height &&
+                        kind[std::size_t(v) * std::size_t(ref.width) + std::size_t(u)] == 2)
+                        k = 1;
+                }
+        }
+    return kind;
+}
+
+struct Sum {
+    double squares = 0;
+    std::size_t count = 0;
+    double rmse() const { return count ? std::sqrt(squares / double(count)) : 0.0; }
+};
+
+// The \p n pixels of largest squared difference: position, image and reference values.
+void print_worst(const Image& image, const Image& ref, const Image& error, std::size_t n) {
+    std::vector<std::size_t> order(error.pixels.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    const auto squares = [&](std::size_t i) {
+        const Rgb& d = error.pixels[i];
+        return double(d.r) * d.r + double(d.g) * d.g + double(d.b) * d.b;
+    };
+    n = std::min(n, order.size());
+    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(n), order.end(),
+                      [&](std::size_t a, std::size_t b) { return squares(a) > squares(b); });
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = order[k];
+        const Rgb &a = image.pixels[i], &b = ref.pixels[i];
+        std::printf("x %4zu y %4zu  image %.4f %.4f %.4f  reference %.4f %.4f %.4f\n",
+                    i % std::size_t(ref.width), i / std::size_t(ref.width), a.r, a.g, a.b, b.r, b.g,
+                    b.b);
+    }
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
     try {
-        const Image image = read_exr(argv[1]), ref = read_exr(argv[2]);
+        const Options o = parse(argc, argv);
+        const Image image = read_exr(o.image), ref = read_exr(o.reference);
         if (image.width != ref.width || image.height != ref.height) {
             std::fprintf(stderr, "exr_rmse: %dx%d against %dx%d\n", image.width, image.height,
                          ref.width, ref.height);
             return 2;
         }
-        const double light =
-            argc == 4 ? std::stod(argv[3]) : std::numeric_limits<double>::infinity();
-        double sum = 0;
-        std::size_t count = 0;
+        const std::vector<int> kind = classify(ref, o.light);
+        Sum all, edge, rest;
+        Image error(ref.width, ref.height);
         for (std::size_t i = 0; i < ref.pixels.size(); ++i) {
-            if (to_photometric(ref.pixels[i]) / k_luminous_efficacy_lm_per_w > 0.9 * light)
+            if (kind[i] == 2)
                 continue;
             const Rgb d = image.pixels[i] - ref.pixels[i];
-            sum += double(d.r) * d.r + double(d.g) * d.g + double(d.b) * d.b;
-            count += 3;
+            const double s = double(d.r) * d.r + double(d.g) * d.g + double(d.b) * d.b;
+            Sum& part = kind[i] == 1 ? edge : rest;
+            for (Sum* sum : {&all, &part}) {
+                sum->squares += s;
+                sum->count += 3;
+            }
+            error.pixels[i] = d;
         }
-        std::printf("%.6f\n", std::sqrt(sum / double(count)));
+        if (o.split)
+            std::printf("%.6f (edge: %zu pixels, RMSE %.6f; rest %.6f)\n", all.rmse(),
+                        edge.count / 3, edge.rmse(), rest.rmse());
+        else
+            std::printf("%.6f\n", all.rmse());
+        if (!o.error.empty())
+            write_exr(o.error, error);
+        print_worst(image, ref, error, o.worst);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "exr_rmse: %s\n", e.what());

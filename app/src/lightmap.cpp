@@ -4,6 +4,7 @@
 #include "app/lightmap.h"
 
 #include "lightmap_directional.h"
+#include "lightmap_emitters.h"
 #include "lightmap_fill.h"
 #include "lightmap_preview.h"
 #include "memory_checks.h"
@@ -80,9 +81,11 @@ void fill_lightmaps(const Scene& scene, const BakeResult& bake, LightmapResult& 
     timed(r.times, "fill", [&] {
         rt = std::make_unique<raytrace::EmbreeScene>(bake.mesh);
         const RadiosityMesh& sources = bake.input_mesh ? *bake.input_mesh : bake.mesh;
+        const EmittersSeen seen = emitters_seen_by_polygons(bake.mesh, sources, *rt, ctx);
         for (const lightmap::AtlasTexels& atlas : r.texels)
-            r.atlases.push_back(fill_atlas(scene, bake.solution, *rt, sources, r.charts, r.layout,
-                                           atlas, ctx, r.counts, r.options.gather_samples));
+            r.atlases.push_back(fill_atlas(scene, bake.solution, *rt, sources, seen, r.charts,
+                                           r.layout, atlas, ctx, r.counts,
+                                           r.options.gather_samples));
         r.rays = rt->rays_traced();
         return 0;
     });

@@ -43,10 +43,11 @@ Vec3 inset_point(const std::array<Vec3, 3>& v, const Vec3& w, double inset) {
 
 // One batch of texels' samples, k_texel_samples_per_axis² slots per texel.
 struct SampleBatch {
-    std::vector<std::uint8_t> count;   ///< per texel: its samples on the chart
-    std::vector<std::uint8_t> visible; ///< per slot: on its polygon's own element
-    std::vector<Vec3> point, normal;   ///< per slot: gather point and normal
-    std::vector<Rgb> indirect;         ///< per slot
+    std::vector<std::uint8_t> count;    ///< per texel: its samples on the chart
+    std::vector<std::uint8_t> visible;  ///< per slot: on its polygon's own element
+    std::vector<Vec3> point, normal;    ///< per slot: gather point and normal
+    std::vector<std::uint32_t> polygon; ///< per slot: the input polygon it lies on
+    std::vector<Rgb> indirect;          ///< per slot
 };
 
 SampleBatch locate_batch(const Solution& solution, const raytrace::EmbreeScene& rt,
@@ -60,6 +61,7 @@ SampleBatch locate_batch(const Solution& solution, const raytrace::EmbreeScene& 
     b.visible.assign((end - begin) * slots, 0);
     b.point.resize(b.visible.size());
     b.normal.resize(b.visible.size());
+    b.polygon.resize(b.visible.size());
     b.indirect.resize(b.visible.size());
     parallel_for_index(end - begin, 64, [&](std::size_t k) {
         const Texel& texel = texels.texels[begin + k];
@@ -77,6 +79,7 @@ SampleBatch locate_batch(const Solution& solution, const raytrace::EmbreeScene& 
             b.visible[slot] = 1;
             b.point[slot] = found->gather_point;
             b.normal[slot] = s.normal;
+            b.polygon[slot] = chart.triangles[s.triangle].polygon;
             b.indirect[slot] = found->indirect;
         }
     });
@@ -91,12 +94,14 @@ void fill_batch(const TexelLightSources& light, const AtlasTexels& texels, std::
                 std::vector<std::uint8_t>& valued, LightmapCounts& stats) {
     constexpr std::size_t slots = std::size_t(k_texel_samples_per_axis * k_texel_samples_per_axis);
     std::vector<Vec3> points, normals;
+    std::vector<std::uint32_t> polygons;
     for (std::size_t slot = 0; slot < b.visible.size(); ++slot)
         if (b.visible[slot]) {
             points.push_back(b.point[slot]);
             normals.push_back(b.normal[slot]);
+            polygons.push_back(b.polygon[slot]);
         }
-    const std::vector<Rgb> direct = texel_sample_light(light, points, normals, ctx);
+    const std::vector<Rgb> direct = texel_sample_light(light, points, normals, polygons, ctx);
     std::size_t next = 0;
     for (std::size_t k = 0; k < b.count.size(); ++k) {
         RgbD sum;
@@ -208,10 +213,11 @@ std::optional<MeshSample> locate_sample(const raytrace::EmbreeScene& rt, const S
 }
 
 Image fill_atlas(const Scene& scene, const Solution& solution, const raytrace::EmbreeScene& rt,
-                 const RadiosityMesh& sources, const lightmap::Charts& charts,
-                 const lightmap::AtlasLayout& layout, const lightmap::AtlasTexels& texels,
-                 const Context& ctx, LightmapCounts& counts, int gather_samples) {
-    const TexelLightSources light{scene, solution, rt, sources, gather_samples};
+                 const RadiosityMesh& sources, const EmittersSeen& emitters_seen,
+                 const lightmap::Charts& charts, const lightmap::AtlasLayout& layout,
+                 const lightmap::AtlasTexels& texels, const Context& ctx, LightmapCounts& counts,
+                 int gather_samples) {
+    const TexelLightSources light{scene, solution, rt, sources, emitters_seen, gather_samples};
     Image image(texels.size, texels.size);
     std::vector<std::uint8_t> valued(image.pixels.size(), 0);
     LightmapCounts own;

@@ -4,7 +4,9 @@
 // sample (as sensors gather it) and the solution's indirect light interpolated there.
 // docs/lightmaps.md describes the method.
 
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "app/lightmap.h"
 #include "core/context.h"
@@ -22,6 +24,10 @@ namespace penumbra::app {
 /// sub-squares (lightmap::texel_samples), so that a texel is its footprint's box-filtered mean
 /// and a shadow edge crossing it lands in one of four levels between its sides.
 inline constexpr int k_texel_samples_per_axis = 3;
+
+/// Per input polygon, the emitting elements of the direct light's sources mesh it may see
+/// (emitters_seen_by_polygons, increasing).
+using EmittersSeen = std::vector<std::vector<std::uint32_t>>;
 
 /// \brief A texel sample found on the radiosity mesh.
 struct MeshSample {
@@ -49,13 +55,16 @@ std::optional<MeshSample> locate_sample(const raytrace::EmbreeScene& rt, const S
 ///        of its chart's neighbouring texels, grown inwards. Then dilated into the padding:
 ///        each free texel within layout.padding of a chart takes its nearest covered texel.
 ///        \p rt traces the mesh \p solution lives on; the direct light comes from the
-///        emitting elements of \p sources (solver::direct_irradiance_at), without the
-///        lights whose lightmap_mode is indirect. With \p gather_samples > 0 a sample's value
-///        is the final gather's instead (texel_sample_light). Deterministic for any thread
-///        count; adds what it found to \p counts.
+///        emitting elements of \p sources (solver::direct_irradiance_at) that
+///        \p emitters_seen lists for the sample's polygon (emitters_seen_by_polygons: a lamp
+///        whose every probe line from the polygon is blocked is left out), without the lights
+///        whose lightmap_mode is indirect. With \p gather_samples > 0 a sample's value is the
+///        final gather's instead (texel_sample_light). Deterministic for any thread count; adds
+///        what it found to \p counts.
 Image fill_atlas(const Scene& scene, const Solution& solution, const raytrace::EmbreeScene& rt,
-                 const RadiosityMesh& sources, const lightmap::Charts& charts,
-                 const lightmap::AtlasLayout& layout, const lightmap::AtlasTexels& texels,
-                 const Context& ctx, LightmapCounts& counts, int gather_samples = 0);
+                 const RadiosityMesh& sources, const EmittersSeen& emitters_seen,
+                 const lightmap::Charts& charts, const lightmap::AtlasLayout& layout,
+                 const lightmap::AtlasTexels& texels, const Context& ctx, LightmapCounts& counts,
+                 int gather_samples = 0);
 
 } // namespace penumbra::app

@@ -10,12 +10,18 @@
 
 namespace penumbra::app {
 
+/// A pixel of the preview whose first samples differ by R W/(sr·m²) is sampled again with about
+/// R / this many multi-jittered samples (at most 64²; raytrace::EdgeRefinement): the rim of a
+/// lamp of 17 W/(sr·m²) is then placed to about 0.002 W/(sr·m²).
+inline constexpr double k_preview_edge_tolerance = 0.004;
+
 /// \brief Bilinear lookup of \p atlas at atlas texel coordinates \p texel_uv (texel (i, j)'s
 ///        centre at (i + 0.5, j + 0.5)), clamped at the atlas's edges, as a GPU samples a
 ///        texture with linear filtering and clamp-to-edge.
 Rgb sample_bilinear(const Image& atlas, const Vec2& texel_uv);
 
-/// \brief The view of \p scene's camera (its image size and samples per pixel) over \p rt
+/// \brief The view of \p scene's camera (its image size and samples per pixel, more at edges
+///        of high contrast: k_preview_edge_tolerance) over \p rt
 ///        (the bake's mesh): at each primary hit on a polygon's front side the outgoing
 ///        radiance (ρ E + emission) / π, E the bilinear lookup of r.atlases at the hit's
 ///        lightmap UV, ρ and emission the element's; backs of surfaces (no lightmap) black,

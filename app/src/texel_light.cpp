@@ -55,10 +55,18 @@ solver::DirectLightOptions baked_direct_light(const Scene& scene) {
 }
 
 std::vector<Rgb> texel_sample_light(const TexelLightSources& in, std::span<const Vec3> points,
-                                    std::span<const Vec3> normals, const Context& ctx) {
-    if (adds_solution_indirect(in))
+                                    std::span<const Vec3> normals,
+                                    std::span<const std::uint32_t> polygons, const Context& ctx) {
+    const auto direct = [&](solver::DirectLightOptions options) {
+        if (!in.emitters_seen.empty()) {
+            options.list_of_point = polygons;
+            options.emitter_lists = in.emitters_seen;
+        }
         return solver::direct_irradiance_at(in.scene, in.emitters, in.rt, points, normals, ctx,
-                                            baked_direct_light(in.scene));
+                                            options);
+    };
+    if (adds_solution_indirect(in))
+        return direct(baked_direct_light(in.scene));
     std::vector<Rgb> light = raytrace::gather_irradiance_at(in.rt, in.scene, in.solution, points,
                                                             normals, in.gather_samples, ctx);
     if (!has_indirect_only_light(in.scene))
@@ -67,8 +75,7 @@ std::vector<Rgb> texel_sample_light(const TexelLightSources& in, std::span<const
     live.include = [&](const LightSource& source) {
         return lightmap_mode_of(in.scene, source) == LightmapMode::indirect;
     };
-    const std::vector<Rgb> drawn_live =
-        solver::direct_irradiance_at(in.scene, in.emitters, in.rt, points, normals, ctx, live);
+    const std::vector<Rgb> drawn_live = direct(std::move(live));
     for (std::size_t i = 0; i < light.size(); ++i)
         for (int c = 0; c < 3; ++c)
             light[i][c] = std::max(0.0f, light[i][c] - drawn_live[i][c]);

@@ -39,17 +39,21 @@ struct TexelLightSources {
     const Solution& solution;
     const raytrace::EmbreeScene& rt; ///< over the mesh \p solution lives on
     const RadiosityMesh& emitters;   ///< whose emitting elements give direct light
-    int gather_samples = 0;          ///< > 0: `--gather` with this many paths per sample
+    /// Per input polygon, the emitting elements of \p emitters it may see (all when empty).
+    std::span<const std::vector<std::uint32_t>> emitters_seen;
+    int gather_samples = 0; ///< > 0: `--gather` with this many paths per sample
 };
 
-/// \brief The light at texel samples (\p points facing \p normals) that the fill adds to the
+/// \brief The light at texel samples (\p points facing \p normals, on \p polygons) that the
+///        fill adds to the
 ///        solution's indirect irradiance: the direct irradiance of the lights whose mode is
-///        all (solver::direct_irradiance_at from \p in.emitters). With in.gather_samples > 0
-///        the whole irradiance instead (raytrace::gather_irradiance_at), less the direct light
-///        of the indirect-only lights gathered as above (clamped at 0): then
+///        all (solver::direct_irradiance_at from the emitters in.emitters_seen lists). With
+///        in.gather_samples > 0 the whole irradiance instead (raytrace::gather_irradiance_at), less
+///        the direct light of the indirect-only lights gathered as above (clamped at 0): then
 ///        adds_solution_indirect() is false.
 std::vector<Rgb> texel_sample_light(const TexelLightSources& in, std::span<const Vec3> points,
-                                    std::span<const Vec3> normals, const Context& ctx);
+                                    std::span<const Vec3> normals,
+                                    std::span<const std::uint32_t> polygons, const Context& ctx);
 
 /// \brief Whether texel_sample_light()'s values still need the solution's indirect light.
 inline bool adds_solution_indirect(const TexelLightSources& in) {

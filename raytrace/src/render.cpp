@@ -19,11 +19,59 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <utility>
+#include <vector>
 
 namespace penumbra::raytrace {
 
 namespace {
+
+struct SampledPixel {
+    RgbD mean;
+    double range = 0; ///< the largest channel's max − min over the samples
+};
+
+// A random permutation of 0 … n − 1 (Fisher–Yates).
+std::vector<int> shuffled(int n, Pcg32& rng) {
+    std::vector<int> p(std::size_t(n), 0);
+    std::iota(p.begin(), p.end(), 0);
+    for (int i = n - 1; i > 0; --i)
+        std::swap(p[std::size_t(i)], p[std::size_t(rng.next_u32() % std::uint32_t(i + 1))]);
+    return p;
+}
+
+// n² multi-jittered points of [0, 1)² (Chiu, Shirley and Wang 1994): one in each of the n × n
+// cells and, along each axis, one in each of the n² fine strata. Point (i, j) lies in cell row i,
+// column j, at fine column j·n + px_j(i) and fine row i·n + py_i(j) for random permutations px
+// per column and py per row. An edge nearly parallel to an axis is then placed to 1/n² of the
+// square, where n × n jittered strata place it to 1/n.
+std::vector<Vec2> multi_jittered(int n, Pcg32& rng) {
+    std::vector<std::vector<int>> px, py;
+    for (int k = 0; k < n; ++k) {
+        px.push_back(shuffled(n, rng));
+        py.push_back(shuffled(n, rng));
+    }
+    const double fine = 1.0 / (double(n) * double(n));
+    std::vector<Vec2> points;
+    points.reserve(std::size_t(n) * std::size_t(n));
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const auto u = std::size_t(i), v = std::size_t(j);
+            points.push_back({(j * n + px[v][u] + double(rng.next_float())) * fine,
+                              (i * n + py[u][v] + double(rng.next_float())) * fine});
+        }
+    return points;
+}
+
+// Samples per axis for a pixel whose first samples span \p range: about range / tolerance
+// samples, capped; 0 without refinement.
+int refined_strata(double range, const EdgeRefinement& refine) {
+    if (!(refine.tolerance > 0) || !(range > 0))
+        return 0;
+    const double n = std::ceil(std::sqrt(range / refine.tolerance));
+    return int(std::min(n, double(refine.max_samples_per_axis)));
+}
 
 // Averages along(direction) over a pixel's stratified samples. Each pixel draws from its own
 // content-named stream.
@@ -34,6 +82,25 @@ template <typename Along> struct PixelSampler {
     Along along; ///< Rgb along(const Vec3f& unit_direction)
 
     RgbD mean(int x, int y) const {
+        return mean_visiting(x, y, [](const Rgb&) {});
+    }
+
+    /// mean(), and the largest channel range of its samples.
+    SampledPixel mean_and_range(int x, int y) const {
+        constexpr float inf = std::numeric_limits<float>::infinity();
+        Rgb low{inf, inf, inf}, high{-inf, -inf, -inf};
+        const RgbD m = mean_visiting(x, y, [&](const Rgb& v) {
+            for (int c = 0; c < 3; ++c) {
+                low[c] = std::min(low[c], v[c]);
+                high[c] = std::max(high[c], v[c]);
+            }
+        });
+        return {m,
+                std::max({double(high.r - low.r), double(high.g - low.g), double(high.b - low.b)})};
+    }
+
+    /// mean(), handing each sample's value to \p visit.
+    template <typename Visit> RgbD mean_visiting(int x, int y, Visit&& visit) const {
         const Pcg32 stream = Pcg32::for_stream(RngPurpose::pixel_sample, std::uint64_t(x),
                                                std::uint64_t(y), 0, seed);
         RgbD sum;
@@ -43,12 +110,25 @@ template <typename Along> struct PixelSampler {
                 rng.advance(std::int64_t(sy * strata + sx) << 16);
                 double jx = (sx + double(rng.next_float())) / strata;
                 double jy = (sy + double(rng.next_float())) / strata;
-                sum += RgbD(along(camera.direction(x + jx, y + jy)));
+                const Rgb v = along(camera.direction(x + jx, y + jy));
+                visit(v);
+                sum += RgbD(v);
             }
         }
         // Float samples summed in double lose nothing (below 2^29 samples), so a constant
         // value is reproduced exactly.
         const double count = double(strata) * double(strata);
+        return {sum.r / count, sum.g / count, sum.b / count};
+    }
+
+    /// The mean of n² multi-jittered samples of pixel (x, y), from its own stream.
+    RgbD multi_jittered_mean(int x, int y, int n) const {
+        Pcg32 rng = Pcg32::for_stream(RngPurpose::pixel_sample, std::uint64_t(x), std::uint64_t(y),
+                                      1, seed);
+        RgbD sum;
+        for (const Vec2& p : multi_jittered(n, rng))
+            sum += RgbD(along(camera.direction(x + p.x, y + p.y)));
+        const double count = double(n) * double(n);
         return {sum.r / count, sum.g / count, sum.b / count};
     }
 };
@@ -112,14 +192,38 @@ Image render_solution(const EmbreeScene& scene, const Solution& solution, const 
 
 Image render_hits(const EmbreeScene& scene, const Camera& camera, const HitShader& shade,
                   const Context& ctx) {
+    return render_hits(scene, camera, shade, EdgeRefinement{}, ctx);
+}
+
+Image render_hits(const EmbreeScene& scene, const Camera& camera, const HitShader& shade,
+                  const EdgeRefinement& refine, const Context& ctx) {
     const Vec3f eye(make_camera(camera).eye);
     const auto sampler = make_sampler(camera, ctx, [&](const Vec3f& dir) -> Rgb {
         return shade(scene.intersect(eye, dir, 0.0f, std::numeric_limits<float>::infinity()));
     });
     Image image(camera.width, camera.height);
+    std::vector<double> range(image.pixels.size(), 0.0);
     render_rows(image, ctx, "preview", [&](int x, int y) {
-        const RgbD v = sampler.mean(x, y);
-        return Rgb{float(v.r), float(v.g), float(v.b)};
+        const SampledPixel first = sampler.mean_and_range(x, y);
+        range[std::size_t(y) * std::size_t(image.width) + std::size_t(x)] = first.range;
+        return Rgb{float(first.mean.r), float(first.mean.g), float(first.mean.b)};
+    });
+    if (!(refine.tolerance > 0))
+        return image;
+    // A rim that only clips a pixel's corner may miss all its first samples but not its
+    // neighbours': each pixel is refined by the largest range around it.
+    const Image first = image;
+    render_rows(image, ctx, "preview edges", [&](int x, int y) {
+        double around = 0;
+        for (int v = std::max(y - 1, 0); v <= std::min(y + 1, image.height - 1); ++v)
+            for (int u = std::max(x - 1, 0); u <= std::min(x + 1, image.width - 1); ++u)
+                around = std::max(
+                    around, range[std::size_t(v) * std::size_t(image.width) + std::size_t(u)]);
+        const int n = refined_strata(around, refine);
+        if (n <= sampler.strata)
+            return first.at(x, y);
+        const RgbD m = sampler.multi_jittered_mean(x, y, n);
+        return Rgb{float(m.r), float(m.g), float(m.b)};
     });
     return image;
 }

@@ -125,10 +125,11 @@ TEST(LightmapPreview, CornellMatchesCycles) {
     std::printf("Cornell preview against Cycles: RMSE %.5f without the light, %.5f without its "
                 "edge either; %.1f s\n",
                 e.without_light, e.without_rim, seconds.count());
-    // Measured 0.00246 without the edge (docs/lightmaps.md); with it, the camera's 16 samples
-    // per pixel on the light's edge dominate (0.0225).
-    EXPECT_LT(e.without_rim, 0.003);
-    EXPECT_LT(e.without_light, 0.03);
+    // Measured 0.00239 without the edge and 0.00240 with it (docs/lightmaps.md): the light's
+    // edge pixels are sampled again finely (k_preview_edge_tolerance); with the camera's 16
+    // samples alone they made it 0.0225. The minimum is 0.0025 with the edge.
+    EXPECT_LT(e.without_rim, 0.0025);
+    EXPECT_LT(e.without_light, 0.0025);
 }
 
 } // namespace

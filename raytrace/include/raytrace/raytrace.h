@@ -86,6 +86,24 @@ using HitShader = std::function<Rgb(const EmbreeScene::Hit& hit)>;
 Image render_hits(const EmbreeScene& scene, const Camera& camera, const HitShader& shade,
                   const Context& ctx);
 
+/// \brief Where render_hits() samples a pixel again, more finely: at an edge of high contrast
+///        (a lamp's rim), whose placement the camera's few samples get wrong by a step of
+///        1 / samples of the contrast.
+struct EdgeRefinement {
+    /// A pixel whose first samples differ by R (largest channel range, W/(sr·m²)) is sampled
+    /// again with about R / tolerance multi-jittered samples (their mean replaces the first
+    /// samples' when they are more): the placement error of an edge near an axis is then
+    /// about tolerance / 2. 0: no refinement.
+    double tolerance = 0;
+    int max_samples_per_axis = 64; ///< caps the refined samples at this squared
+};
+
+/// \brief render_hits() with the pixels at high-contrast edges sampled again as \p refine
+///        says, with multi-jittered samples (Chiu, Shirley and Wang 1994) from a stream named
+///        by the pixel. Bitwise identical for any thread count.
+Image render_hits(const EmbreeScene& scene, const Camera& camera, const HitShader& shade,
+                  const EdgeRefinement& refine, const Context& ctx);
+
 /// \brief How `penumbra render` finds the light a diffuse surface reflects (issue #28).
 enum class GatherMode {
     final_gather, ///< paths read the radiosity solution one diffuse bounce away (final gather)

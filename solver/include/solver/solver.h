@@ -117,6 +117,13 @@ struct DirectLightOptions {
     /// Unset: every source; else only those for which it returns true (an emitting element
     /// is the AreaSource of its patch's polygon). Called before the gather, never per point.
     std::function<bool(const LightSource&)> include;
+    /// Empty: every point gathers from all emitting elements. Else point i gathers only from
+    /// those listed (increasing element indices) in emitter_lists[list_of_point[i]]; point
+    /// lights, the sun and the sky as before. A point's value is bitwise the full gather's
+    /// when the emitters left out are those its probe rays find wholly hidden (the stream is
+    /// drawn only for emitters in its penumbra, in element order).
+    std::span<const std::uint32_t> list_of_point;
+    std::span<const std::vector<std::uint32_t>> emitter_lists; ///< see list_of_point
 };
 
 /// \brief Direct irradiance (W/m²) at each of \p points on a surface facing \p normals (unit),
@@ -127,7 +134,8 @@ struct DirectLightOptions {
 ///        offset above the point. Each point draws from a stream named by its coordinates and
 ///        normal (RngPurpose::texel_visibility): a point's value depends neither on the thread
 ///        count nor on the other points. Parallel in an arena from \p ctx. For lightmap
-///        texels (issue #29). \p options may leave sources out (mixed lighting).
+///        texels (issue #29). \p options may leave sources out (mixed lighting) or narrow
+///        the emitting elements per point (the polygons' lists of emitters they may see).
 std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& sources,
                                       const VisibilityQuery& visibility,
                                       std::span<const Vec3> points, std::span<const Vec3> normals,

@@ -54,6 +54,9 @@ std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& m
                                       const Context& ctx, const DirectLightOptions& options) {
     if (points.size() != normals.size())
         throw InternalError("direct_irradiance_at: points and normals differ in number");
+    if (!options.list_of_point.empty() && options.list_of_point.size() != points.size())
+        throw InternalError(
+            "direct_irradiance_at: points and their emitter lists differ in number");
     std::vector<Rgb> out(points.size());
     if (out.empty())
         return out;
@@ -68,7 +71,10 @@ std::vector<Rgb> direct_irradiance_at(const Scene& scene, const RadiosityMesh& m
         parallel_for_index(points.size(), 16, [&](std::size_t i) {
             const GatherPoint p{points[i], normals[i], point_stream_id(points[i], normals[i]),
                                 RngPurpose::texel_visibility};
-            out[i] = gather_direct(geo, sources, visibility, p, rays, ctx.seed);
+            const std::vector<std::uint32_t>* emitters =
+                options.list_of_point.empty() ? nullptr
+                                              : &options.emitter_lists[options.list_of_point[i]];
+            out[i] = gather_direct(geo, sources, visibility, p, rays, ctx.seed, emitters);
         });
         return out;
     });

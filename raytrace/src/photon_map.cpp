@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace penumbra::raytrace {
 
@@ -33,9 +34,6 @@ struct PhotonCloud {
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<
     nanoflann::L2_Simple_Adaptor<double, PhotonCloud, double, std::size_t>, PhotonCloud, 3,
     std::size_t>;
-
-/// Photons of the nearest-photon estimate (Jensen 1996 uses 50 to 100).
-constexpr std::size_t k_neighbours = 64;
 
 /// The reflected flux of one photon at \p s, if it landed on the same side of a surface
 /// facing the same way.
@@ -75,6 +73,20 @@ struct CausticMap::Tree {
         : cloud{photons}, tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
 };
 
+std::size_t CausticMap::nearest_within(const double query[3], double radius2,
+                                       std::array<std::size_t, k_neighbours>& index,
+                                       std::array<double, k_neighbours>& dist2) const {
+    // The k-nearest search starts with the cap as its worst distance instead of infinity, so
+    // it prunes every branch beyond the cap from the start; the photons it keeps are those
+    // of the uncapped search within the cap, in the same order. One ulp above the cap keeps
+    // a photon exactly on it.
+    nanoflann::KNNResultSet<double, std::size_t> nearest(k_neighbours);
+    nearest.init(index.data(), dist2.data());
+    dist2[k_neighbours - 1] = std::nextafter(radius2, std::numeric_limits<double>::infinity());
+    tree_->tree.findNeighbors(nearest, query, nanoflann::SearchParams());
+    return nearest.size();
+}
+
 CausticMap::CausticMap(CausticPhotons photons) : photons_(std::move(photons)) {
     if (!photons_.photons.empty())
         tree_ = std::make_unique<Tree>(photons_.photons);
@@ -101,13 +113,11 @@ Rgb CausticMap::radiance(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo) 
         // photons spread thin (a metal sphere's reflection over the walls).
         std::array<std::size_t, k_neighbours> index{};
         std::array<double, k_neighbours> dist2{};
-        const std::size_t found =
-            tree_->tree.knnSearch(query, k_neighbours, index.data(), dist2.data());
+        const std::size_t found = nearest_within(query, r2, index, dist2);
         if (found == k_neighbours)
-            r2 = std::min(r2, dist2[found - 1]);
+            r2 = dist2[found - 1];
         for (std::size_t i = 0; i < found; ++i)
-            if (dist2[i] <= r2)
-                sum += reflected_flux(photons_.photons[index[i]], bsdf, s, wo);
+            sum += reflected_flux(photons_.photons[index[i]], bsdf, s, wo);
     }
     if (!(r2 > 0))
         return {};

@@ -8,6 +8,8 @@
 
 #include "core/bsdf.h"
 
+#include <array>
+#include <cstddef>
 #include <memory>
 
 namespace penumbra::raytrace {
@@ -28,6 +30,15 @@ public:
     Rgb radiance(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo) const;
 
 private:
+    /// Photons of the nearest-photon estimate (Jensen 1996 uses 50 to 100).
+    static constexpr std::size_t k_neighbours = 64;
+
+    /// The k_neighbours photons nearest to \p query within \p radius2 (squared) or all within
+    /// it if fewer, nearest first; returns how many.
+    std::size_t nearest_within(const double query[3], double radius2,
+                               std::array<std::size_t, k_neighbours>& index,
+                               std::array<double, k_neighbours>& dist2) const;
+
     struct Tree;
     CausticPhotons photons_;
     std::unique_ptr<Tree> tree_;

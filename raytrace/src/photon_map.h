@@ -1,6 +1,7 @@
 #pragma once
 // The caustic photons in a kd-tree (nanoflann) and their density estimate at a surface point
-// (Jensen 1996). Internal to raytrace/.
+// (Jensen 1996), precomputed at the photons for Lambertian receivers (Christensen 1999).
+// Internal to raytrace/.
 
 #include "raytrace/raytrace.h"
 
@@ -8,16 +9,16 @@
 
 #include "core/bsdf.h"
 
-#include <array>
-#include <cstddef>
 #include <memory>
+#include <vector>
 
 namespace penumbra::raytrace {
 
 /// \brief Reflected radiance of the caustic photons near a point: Σ f(wo, wi_p) Φ_p / (π r²)
 ///        over the photons within r that landed on the same side of a surface facing the same
 ///        way; r the distance to the 64th nearest photon (at most CausticPhotons::radius_m),
-///        or that radius when fixed.
+///        or that radius when fixed. At a Lambertian receiver f is constant, so the sum is
+///        taken once at every fourth photon and a point reads the nearest one's (within its disc).
 class CausticMap {
 public:
     explicit CausticMap(CausticPhotons photons);
@@ -30,18 +31,22 @@ public:
     Rgb radiance(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo) const;
 
 private:
-    /// Photons of the nearest-photon estimate (Jensen 1996 uses 50 to 100).
-    static constexpr std::size_t k_neighbours = 64;
+    /// The estimate's disc around one photon, as if a point there were asked.
+    struct PhotonDisc {
+        RgbD irradiance_w_m2; ///< Σ Φ / (π r²) of the photons the estimate there counts
+        double radius2 = 0;   ///< r², m²
+    };
 
-    /// The k_neighbours photons nearest to \p query within \p radius2 (squared) or all within
-    /// it if fewer, nearest first; returns how many.
-    std::size_t nearest_within(const double query[3], double radius2,
-                               std::array<std::size_t, k_neighbours>& index,
-                               std::array<double, k_neighbours>& dist2) const;
+    /// The full estimate at \p s (any receiver).
+    Rgb estimate(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo) const;
+    /// The nearest photon's precomputed estimate at \p s (a Lambertian receiver).
+    Rgb precomputed(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo) const;
+    PhotonDisc disc_at(const CausticPhoton& photon) const;
 
     struct Tree;
     CausticPhotons photons_;
     std::unique_ptr<Tree> tree_;
+    std::vector<PhotonDisc> discs_; ///< one per precomputed photon (photon_map.cpp)
 };
 
 } // namespace penumbra::raytrace

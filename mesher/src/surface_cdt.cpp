@@ -59,6 +59,19 @@ Vec2 centroid(const Face_handle& f) {
     return {(a.x() + b.x() + c.x()) / 3.0, (a.y() + b.y() + c.y()) / 3.0};
 }
 
+// Whether CGAL's refinement can insert \p fh's circumcentre: false for a face so flat that
+// the circumcentre (CGAL's formula, in doubles) has a zero denominator or is no finite double.
+bool has_finite_circumcentre(const Face_handle& fh) {
+    const Point &p = fh->vertex(0)->point(), &q = fh->vertex(1)->point(),
+                &r = fh->vertex(2)->point();
+    const double qx = q.x() - p.x(), qy = q.y() - p.y(), rx = r.x() - p.x(), ry = r.y() - p.y();
+    const double den = 2 * (qx * ry - rx * qy);
+    if (den == 0)
+        return false;
+    const double q2 = qx * qx + qy * qy, r2 = rx * rx + ry * ry;
+    return std::isfinite((ry * q2 - qy * r2) / den) && std::isfinite((rx * q2 - qx * r2) / den);
+}
+
 /// Size and angle criteria with a size field (finer along discontinuities) that leave faces
 /// with an edge below min_edge alone as far as their angles go.
 class Criteria : public BaseCriteria {
@@ -73,6 +86,10 @@ public:
             : BaseCriteria::Is_bad(base), min_sq_(min_edge * min_edge), field_(field) {}
         using BaseCriteria::Is_bad::operator();
         CGAL::Mesh_2::Face_badness operator()(const Face_handle& fh, Quality& q) const {
+            // A face so flat that its circumcentre is not a finite double cannot be refined:
+            // CGAL would insert a NaN point (a sliver polygon's needle faces).
+            if (!has_finite_circumcentre(fh))
+                return CGAL::Mesh_2::NOT_BAD;
             const CGAL::Mesh_2::Face_badness badness = BaseCriteria::Is_bad::operator()(fh, q);
             if (badness == CGAL::Mesh_2::IMPERATIVELY_BAD)
                 return badness;

@@ -13,6 +13,8 @@ flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fr
 # Set before the build too: test discovery runs the sanitized test binaries.
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
+# The CLI memory tests bound the CPU time of a refused run (a few seconds in Release).
+export PENUMBRA_TEST_CPU_SCALE=${PENUMBRA_TEST_CPU_SCALE:-10}
 
 # The build type's flags replace RelWithDebInfo's -O2 -DNDEBUG: assertions are checked too.
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPENUMBRA_BUILD_BENCH=OFF \

@@ -36,6 +36,8 @@ public:
     explicit StateChecksum(std::uint64_t total_bytes) : h_(hash_words({total_bytes})) {}
 
     void add(const void* data, std::size_t size) {
+        if (size == 0) // an empty array's data() may be null, which memcpy must not see
+            return;
         const char* bytes = static_cast<const char*>(data);
         if (pending_ > 0) { // complete the word an earlier piece began
             const std::size_t n = std::min(size, sizeof(std::uint64_t) - pending_);

@@ -60,13 +60,8 @@ double irradiance_at(const app::LightmapResult& r, std::size_t atlas, const ligh
 // and band 1 vanishes: tests/lightmap/sh_test.cpp.) ----
 
 TEST(LightmapDirectional, FurnaceTexelsHoldTheHemisphereOfUniformRadiance) {
-    Scene scene;
     const float rho = 0.5f, exitance = 1.0f;
-    const auto m = add_material(scene, "furnace", Rgb(rho), Rgb(float(exitance / k_pi)));
-    test::add_room(scene, {0, 0, 0}, {1.0, 0.7, 0.5}, m);
-    scene.mesher.max_edge_length = 0.2;
-    scene.solver.residual = 1e-5;
-    scene.solver.method = SolverMethod::shooting;
+    Scene scene = test::furnace_room(rho, exitance);
     const app::LightmapResult r = directional_lightmaps(scene, 12, 64);
     ASSERT_EQ(r.directional.size(), r.atlases.size());
     const double b = exitance / (1 - rho), l = b / k_pi;

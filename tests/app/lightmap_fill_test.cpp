@@ -29,15 +29,8 @@ app::LightmapResult bake_lightmaps(const Scene& scene, double texels_per_metre, 
 // H = E / (1 − ρ) everywhere: E directly from the walls, ρ H by reflection. ----
 
 TEST(LightmapFurnace, EveryTexelReceivesEOverOneMinusRho) {
-    Scene scene;
     const float rho = 0.5f, exitance = 1.0f;
-    const auto m = add_material(scene, "furnace", Rgb(rho), Rgb(float(exitance / k_pi)));
-    test::add_room(scene, {0, 0, 0}, {1.0, 0.7, 0.5}, m); // not a cube: any shape works
-    scene.mesher.max_edge_length = 0.2;
-    scene.solver.residual = 1e-5;
-    // Progressive shooting: hierarchical radiosity would refine every wall, all emitters, far
-    // down for no change in a uniform solution.
-    scene.solver.method = SolverMethod::shooting;
+    Scene scene = test::furnace_room(rho, exitance);
     const app::LightmapResult r = bake_lightmaps(scene, 12, 64);
     const double expected = exitance / (1 - rho);
     double worst = 0;

@@ -291,12 +291,7 @@ TEST(LightmapRebake, DoubledLampReusingTheLinksEqualsTheFullBake) {
 // that read ρ E / (1 − ρ) / π one bounce away. ----
 
 app::LightmapResult furnace_gathered(int samples, int threads) {
-    Scene scene;
-    const auto m = add_material(scene, "furnace", Rgb(0.5f), Rgb(float(1.0 / k_pi)));
-    test::add_room(scene, {0, 0, 0}, {1.0, 0.7, 0.5}, m);
-    scene.mesher.max_edge_length = 0.2;
-    scene.solver.residual = 1e-5;
-    scene.solver.method = SolverMethod::shooting;
+    const Scene scene = test::furnace_room(0.5f, 1.0f);
     app::LightmapOptions options = atlas_options(12, 64);
     options.gather_samples = samples;
     return app::bake_lightmaps(scene, options, test::quiet_context(threads));

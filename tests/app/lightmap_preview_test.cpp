@@ -35,13 +35,8 @@ TEST(LightmapPreview, BilinearLookupReproducesALinearRampAndClampsAtTheEdges) {
 // H = E / (1 − ρ); every surface leaves (ρ H + E) / π = E / (π (1 − ρ)) of radiance. ----
 
 TEST(LightmapPreview, FurnaceSeenFromInsideIsUniform) {
-    Scene scene;
     const float rho = 0.5f, exitance = 1.0f;
-    const auto m = test::add_material(scene, "furnace", Rgb(rho), Rgb(float(exitance / k_pi)));
-    test::add_room(scene, {0, 0, 0}, {1.0, 0.7, 0.5}, m);
-    scene.mesher.max_edge_length = 0.2;
-    scene.solver.residual = 1e-5;
-    scene.solver.method = SolverMethod::shooting;
+    Scene scene = test::furnace_room(rho, exitance);
     Camera camera;
     camera.eye = {0.5, 0.35, 0.25};
     camera.look_at = {0.9, 0.6, 0.05}; // a corner in view: three walls and their edges

@@ -43,13 +43,8 @@ std::vector<Vec3> test_normals() {
 // for every n, and bands 1 and 2 vanish. ----
 
 TEST(Probes, FurnaceBoxGivesUniformIrradianceAndBandZeroOnly) {
-    Scene scene;
     const float rho = 0.5f, exitance = 1.0f;
-    const auto m = add_material(scene, "furnace", Rgb(rho), Rgb(float(exitance / k_pi)));
-    test::add_room(scene, {0, 0, 0}, {1.0, 0.7, 0.5}, m);
-    scene.mesher.max_edge_length = 0.2;
-    scene.solver.residual = 1e-5;
-    scene.solver.method = SolverMethod::shooting;
+    Scene scene = test::furnace_room(rho, exitance);
     scene.probes = ProbeSettings{};
     scene.probes->points = {{0.5, 0.35, 0.25}, {0.05, 0.05, 0.05}, {0.9, 0.6, 0.45}};
     scene.probes->rays = 512;

@@ -191,6 +191,16 @@ void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t materi
     add_rect(scene, "wall_x1", material, lo + ex, ez, ey); // faces -x
 }
 
+Scene furnace_room(float rho, float exitance) {
+    Scene scene;
+    const auto m = add_material(scene, "furnace", Rgb(rho), Rgb(float(exitance / k_pi)));
+    add_room(scene, {0, 0, 0}, {1.0, 0.7, 0.5}, m);
+    scene.mesher.max_edge_length = 0.2;
+    scene.solver.residual = 1e-5;
+    scene.solver.method = SolverMethod::shooting;
+    return scene;
+}
+
 void add_cie171_room_without_ceiling(Scene& scene, std::uint32_t material) {
     const double h = 3;
     add_rect(scene, "floor", material, {0, 0, 0}, {4, 0, 0}, {0, 4, 0});

@@ -81,6 +81,12 @@ void add_rect(Scene& scene, const std::string& name, std::uint32_t material, con
 /// Adds an axis-aligned box room [lo, hi] whose six walls face inwards.
 void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t material);
 
+/// \brief A closed 1 × 0.7 × 0.5 m room (not a cube: any shape works) whose every wall emits
+///        \p exitance (W/m²) and reflects \p rho, so that B = E / (1 − ρ) everywhere; 0.2 m
+///        elements, progressive shooting to a residual of 10⁻⁵ (hierarchical radiosity would
+///        refine every wall, all emitters, far down for no change in a uniform solution).
+Scene furnace_room(float rho, float exitance);
+
 /// Adds the floor and four walls (facing inwards) of CIE 171's 4 × 4 × 3 m test room, x and y
 /// in [0, 4], z in [0, 3]; the tests add their own ceilings.
 void add_cie171_room_without_ceiling(Scene& scene, std::uint32_t material);

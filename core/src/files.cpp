@@ -71,14 +71,6 @@ private:
     TempSlot* slot_ = nullptr;
 };
 
-/// A device, folder or fifo at \p path is refused: renaming onto it would replace it.
-void check_replaceable(const std::string& path) {
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (fs::exists(status) && !fs::is_regular_file(status))
-        throw ConfigError(fmt::format("'{}' is not a regular file", path));
-}
-
 /// The PID of a temporary name ".NAME.tmpPID" for \p name, or 0 if \p file is not one.
 pid_t temp_pid(const std::string& file, const std::string& name) {
     const std::string prefix = "." + name + k_temp_infix;
@@ -95,6 +87,13 @@ bool process_alive(pid_t pid) {
 }
 
 } // namespace
+
+void check_replaceable(const std::string& path) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);
+    if (fs::exists(status) && !fs::is_regular_file(status))
+        throw ConfigError(fmt::format("'{}' is not a regular file", path));
+}
 
 void write_atomically(const std::string& path,
                       const std::function<void(const std::string& temp_path)>& write) {

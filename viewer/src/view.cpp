@@ -4,6 +4,7 @@
 #include "viewer/view.h"
 
 #include "core/error.h"
+#include "core/files.h"
 
 #include "view_data.h"
 #include "view_scene.h"
@@ -79,6 +80,8 @@ void check_png_path(const std::string& png) {
     if (!fs::is_directory(folder, ec))
         throw ConfigError(
             fmt::format("--png '{}': folder '{}' does not exist", png, folder.string()));
+    // Refused before VTK renders, not when the picture is written: that took 40 s under load.
+    check_replaceable(png);
 }
 
 } // namespace

@@ -10,6 +10,10 @@
 
 namespace penumbra {
 
+/// \brief Throws ConfigError if \p path exists and is not a regular file: renaming onto a
+///        device, folder or fifo would replace it. Lets a slow writer refuse before its work.
+void check_replaceable(const std::string& path);
+
 /// \brief Calls \p write with a temporary path in the target's folder, then renames it to
 ///        \p path. Removes the temporary file if \p write throws. Throws ConfigError if
 ///        \p path exists and is not a regular file (a device, folder or fifo is never

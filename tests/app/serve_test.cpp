@@ -86,8 +86,8 @@ TEST(ServeCli, BadArgumentsAreOneLineErrors) {
 }
 
 // A port another server listens on is a one-line error (exit 4), even when that server allows
-// SO_REUSEPORT: a second `penumbra serve` must not share its connections (were it to bind, this
-// test would hang until ctest's timeout, the server never ending by itself).
+// SO_REUSEPORT: a second `penumbra serve` must not share its connections. Were it to bind, it
+// would serve until killed: the run is bounded (exit 124), and the test fails rather than hangs.
 TEST(ServeCli, BusyPortIsOneLineError) {
     const int holder = ::socket(AF_INET, SOCK_STREAM, 0);
     ASSERT_GE(holder, 0);
@@ -110,7 +110,8 @@ TEST(ServeCli, BusyPortIsOneLineError) {
         std::ofstream(f) << "x";
     const test::RunResult busy =
         test::run_cli("serve " + dir.string() + " --client " + (dir / "client").string() +
-                      " --port " + std::to_string(port));
+                          " --port " + std::to_string(port),
+                      60);
     ::close(holder);
     EXPECT_EQ(busy.exit_code, 4);
     EXPECT_NE(busy.err.find("cannot listen on 127.0.0.1:" + std::to_string(port)),

@@ -61,8 +61,10 @@ Context quiet_context(int threads) {
     return ctx;
 }
 
-RunResult run_cli(const std::string& args) {
-    const std::string cmd = std::string(PENUMBRA_CLI) + " " + args + " 2>&1 1>/dev/null";
+RunResult run_cli(const std::string& args, int time_limit_s) {
+    const std::string limit =
+        time_limit_s > 0 ? "timeout -k 5 " + std::to_string(time_limit_s) + " " : "";
+    const std::string cmd = limit + PENUMBRA_CLI + " " + args + " 2>&1 1>/dev/null";
     RunResult r;
     FILE* pipe = ::popen(cmd.c_str(), "r");
     if (!pipe)

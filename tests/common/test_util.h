@@ -55,8 +55,10 @@ struct RunResult {
     std::string err;
 };
 
-/// Runs the built penumbra CLI with \p args (standard output discarded).
-RunResult run_cli(const std::string& args);
+/// \brief Runs the built penumbra CLI with \p args (standard output discarded). With
+///        \p time_limit_s > 0 the run is killed after that many seconds (exit code 124), so a
+///        command that should fail at once cannot hang the test instead.
+RunResult run_cli(const std::string& args, int time_limit_s = 0);
 
 /// \brief Runs the built penumbra CLI with \p args (one per word, standard output discarded)
 ///        in a process whose files may not grow past \p max_bytes: RLIMIT_FSIZE with SIGXFSZ

@@ -232,6 +232,10 @@ std::vector<NodedSegment> node_pass(const std::vector<NodedSegment>& in, PointSn
             splits[i].push_back(x);
             splits[j].push_back(x);
         }
+        // The outline is the surface's geometry: its own vertices never split its other
+        // edges (a sliver's short edge can be below the merge distance).
+        if (in[i].outline && in[j].outline)
+            return;
         for (const auto& [s, t] : {std::pair{i, j}, std::pair{j, i}})
             for (const Vec2& v : {segs[t].a, segs[t].b})
                 if (distance_to_segment(v, segs[s].a, segs[s].b) <= merge &&

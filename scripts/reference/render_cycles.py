@@ -247,6 +247,9 @@ def apply_override(material, override, name):
     if "emission_two_sided" in override:
         material["two_sided_emission"] = bool(override["emission_two_sided"])
     if kind == "diffuse":
+        if material["lobe"] is not None and "reflectance" not in override:
+            fail(f"{where}: a diffuse type over the file's {material['lobe']['type']} needs "
+                 "its own reflectance (which one Penumbra keeps is not checked here)")
         material["lobe"] = None
     elif kind is not None:
         material["lobe"] = {"type": kind}

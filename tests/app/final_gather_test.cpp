@@ -14,6 +14,7 @@
 
 #include "app/pipeline.h"
 #include "common/bake_util.h"
+#include "common/reference_tiles.h"
 #include "common/test_util.h"
 #include "core/error.h"
 #include "core/image.h"
@@ -213,40 +214,6 @@ TEST(FinalGatherThinLens, DiscAtTheFocusDistanceStaysSharp) {
 
 // ---- The final gather against the pure path tracer on the Cornell box ----
 
-struct TileStats {
-    std::vector<double> mean; ///< per tile, over the renders
-    std::vector<double> standard_error;
-};
-
-/// Per 16 × 16 tile, the mean luminance of \p renders and its standard error from their
-/// scatter (independent seeds).
-TileStats tile_stats(const std::vector<Image>& renders) {
-    constexpr int k_tile = 16;
-    const int tiles_x = renders[0].width / k_tile, tiles_y = renders[0].height / k_tile;
-    TileStats stats;
-    for (int ty = 0; ty < tiles_y; ++ty)
-        for (int tx = 0; tx < tiles_x; ++tx) {
-            std::vector<double> means;
-            for (const Image& image : renders) {
-                double sum = 0;
-                for (int y = ty * k_tile; y < (ty + 1) * k_tile; ++y)
-                    for (int x = tx * k_tile; x < (tx + 1) * k_tile; ++x)
-                        sum += luminance(image.at(x, y));
-                means.push_back(sum / (k_tile * k_tile));
-            }
-            double mean = 0, var = 0;
-            for (double m : means)
-                mean += m;
-            mean /= double(means.size());
-            for (double m : means)
-                var += (m - mean) * (m - mean);
-            var /= double(means.size() - 1);
-            stats.mean.push_back(mean);
-            stats.standard_error.push_back(std::sqrt(var / double(means.size())));
-        }
-    return stats;
-}
-
 TEST(FinalGatherCornell, AgreesWithThePathTracerPerTile) {
     Scene scene = test::cornell_box(0.05);
     scene.camera->width = scene.camera->height = 64;
@@ -266,7 +233,7 @@ TEST(FinalGatherCornell, AgreesWithThePathTracerPerTile) {
         path_renders.push_back(
             raytrace::render_final_gather(rt, scene, baked.solution, *scene.camera, options, ctx));
     }
-    const TileStats fg = tile_stats(final_renders), pt = tile_stats(path_renders);
+    const test::TileStats fg = test::tile_stats(final_renders), pt = test::tile_stats(path_renders);
     int failures = 0;
     for (std::size_t t = 0; t < fg.mean.size(); ++t) {
         const double se = std::hypot(fg.standard_error[t], pt.standard_error[t]);
@@ -281,22 +248,6 @@ TEST(FinalGatherCornell, AgreesWithThePathTracerPerTile) {
 }
 
 // ---- Against the Cycles reference (data/reference/cornell/README.md) ----
-
-/// Luminance standard error of each 16 × 16 tile's mean of \p stderr_image (per-pixel standard
-/// errors).
-std::vector<double> tile_standard_errors(const Image& stderr_image) {
-    constexpr int k_tile = 16;
-    std::vector<double> out;
-    for (int ty = 0; ty < stderr_image.height / k_tile; ++ty)
-        for (int tx = 0; tx < stderr_image.width / k_tile; ++tx) {
-            double var = 0;
-            for (int y = ty * k_tile; y < (ty + 1) * k_tile; ++y)
-                for (int x = tx * k_tile; x < (tx + 1) * k_tile; ++x)
-                    var += std::pow(luminance(stderr_image.at(x, y)), 2);
-            out.push_back(std::sqrt(var) / (k_tile * k_tile));
-        }
-    return out;
-}
 
 /// Per 16 × 16 tile of the Cornell box at 256², \p mode's mean luminance (from eight renders
 /// of independent seeds) against Cycles' 4 096-spp image: |Δ| ≤ 3 standard errors (both
@@ -315,23 +266,9 @@ int tiles_off_cycles(GatherMode mode, int spp) {
         renders.push_back(
             raytrace::render_final_gather(rt, scene, baked.solution, *scene.camera, options, ctx));
     }
-    const Image ref = read_exr(test::source_path("data/reference/cornell/cycles_4096spp.exr"));
-    const Image ref_stderr =
-        read_exr(test::source_path("data/reference/cornell/cycles_4096spp_stderr.exr"));
-    const TileStats ours = tile_stats(renders), cycles = tile_stats({ref});
-    const std::vector<double> cycles_se = tile_standard_errors(ref_stderr);
-    int off = 0;
-    for (std::size_t t = 0; t < ours.mean.size(); ++t) {
-        const double se = std::hypot(ours.standard_error[t], cycles_se[t]);
-        const double delta = ours.mean[t] - cycles.mean[t];
-        if (std::abs(delta) > 3 * se + 0.005 * cycles.mean[t]) {
-            ++off;
-            std::printf("%s: tile (%zu, %zu): %.5f against Cycles %.5f (%+.2f %%, %.1f SE)\n",
-                        std::string(enum_name(mode)).c_str(), t % 16, t / 16, ours.mean[t],
-                        cycles.mean[t], 100 * delta / cycles.mean[t], std::abs(delta) / se);
-        }
-    }
-    return off;
+    return test::tiles_off_reference(renders, "data/reference/cornell/cycles_4096spp.exr",
+                                     "data/reference/cornell/cycles_4096spp_stderr.exr",
+                                     std::string(enum_name(mode)));
 }
 
 /// Our standard errors come from eight renders: |Δ|/SE follows Student's t with 7 degrees of

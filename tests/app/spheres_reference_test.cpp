@@ -1,0 +1,96 @@
+// cornell-spheres (a glass sphere, a GGX metal sphere) against its Cycles reference
+// (data/reference/cornell-spheres/README.md), per 16 × 16 tile, for the final gather and the
+// pure path tracer (issue #28): the glossy, mirror-like and refracted paths that the Cornell
+// box does not have, checked against an independent renderer.
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "app/pipeline.h"
+#include "common/bake_util.h"
+#include "common/reference_tiles.h"
+#include "common/test_util.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/scene_io.h"
+#include "raytrace/raytrace.h"
+
+namespace penumbra {
+namespace {
+
+using raytrace::GatherMode;
+
+/// Renders from this many independent seeds give each tile's standard error.
+constexpr int k_renders = 8;
+
+/// The bundled scene as shared (data/cornell-spheres/), baked once for both modes.
+struct Baked {
+    Scene scene = load_scene(test::source_path("data/cornell-spheres/cornell_spheres.json"));
+    app::BakeResult result = test::bake(scene);
+    raytrace::EmbreeScene rt{result.mesh};
+};
+
+const Baked& baked() {
+    static const Baked b;
+    return b;
+}
+
+/// \p mode's tiles outside 3 standard errors + 0.5 % of the Cycles reference.
+int tiles_off_cycles(GatherMode mode, int spp) {
+    const Baked& b = baked();
+    std::vector<Image> renders;
+    for (int k = 0; k < k_renders; ++k) {
+        Context ctx = test::quiet_context();
+        ctx.seed = std::uint64_t(k + 21);
+        raytrace::RenderOptions options;
+        options.spp = spp;
+        options.gather = mode;
+        renders.push_back(raytrace::render_final_gather(b.rt, b.scene, b.result.solution,
+                                                        *b.scene.camera, options, ctx));
+    }
+    return test::tiles_off_reference(renders, "data/reference/cornell-spheres/cycles_4096spp.exr",
+                                     "data/reference/cornell-spheres/cycles_4096spp_stderr.exr",
+                                     "cornell-spheres " + std::string(enum_name(mode)));
+}
+
+/// With eight renders |Δ|/SE follows Student's t with 7 degrees of freedom: 2 % of the 256
+/// tiles (5) lie beyond 3 by chance alone when the renderers agree.
+constexpr int k_tiles_off_by_chance = 5;
+
+// Disabled: measured 242 of 256 tiles off, every one but two dark, 6 % in the mean (−3 % on
+// the back wall to −16 % in the ceiling's corners). The radiosity solution sees both spheres
+// as black, so light that reached a diffuse surface through them (the metal sphere's
+// reflection of the light on the ceiling, the glass sphere's caustic on the floor) is not in
+// it; the caustic photons add it only where the camera or a near gather ray lands, not its
+// further diffuse bounces that a gather ray reads. Gathering one bounce later
+// (gather_depth 1) halves the deficit (159 tiles off, −3 % in the mean), as a missing term one
+// diffuse bounce further away would; the path tracer below agrees with Cycles in every tile.
+// Enable once the solution includes that light (issue #28).
+TEST(CornellSpheres, DISABLED_FinalGatherTilesAgreeWithCycles) {
+    EXPECT_LE(tiles_off_cycles(GatherMode::final_gather, 16), k_tiles_off_by_chance);
+}
+
+// 64 spp: at 16 the light that reaches the walls through the spheres, found only by BSDF
+// sampling, comes in rare large samples, and eight renders' scatter understates the standard
+// error: 6 tiles were off, five of them low (2–10 %, 3.5–8.8 SE), as the mean of a few
+// heavy-tailed samples mostly is. At 64 spp none is off.
+TEST(CornellSpheres, PathTracerTilesAgreeWithCycles) {
+    EXPECT_LE(tiles_off_cycles(GatherMode::none, 64), k_tiles_off_by_chance);
+}
+
+// ---- data/cornell-spheres-dof: the same scene through a thin lens ----
+
+TEST(CornellSpheresDof, LoadsTheSharedGeometryWithItsLens) {
+    const Scene dof =
+        load_scene(test::source_path("data/cornell-spheres-dof/cornell_spheres_dof.json"));
+    const Scene shared = load_scene(test::source_path("data/cornell-spheres/cornell_spheres.json"));
+    EXPECT_EQ(dof.polygons.size(), shared.polygons.size());
+    ASSERT_TRUE(dof.camera && dof.camera->focus_distance_m);
+    EXPECT_NEAR(dof.camera->aperture_radius_m, 0.06, 1e-12);
+    EXPECT_NEAR(*dof.camera->focus_distance_m, 0.97, 1e-12); // the glass sphere's centre
+}
+
+} // namespace
+} // namespace penumbra

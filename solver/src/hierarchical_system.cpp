@@ -158,16 +158,19 @@ void link_system(HierarchicalSystem& sys, LinkSet& refiner, const Scene& scene, 
         refiner.set_cluster_threshold(scene.solver.epsilon * sys.emitted / clusters.tree.area[0]);
 }
 
-// A re-solve starts from the saved weights (of the same links: geometry only) and solves
-// once before refining: the oracle should see the new materials' radiosities.
+// A re-solve starts from the saved weights (of the same links), their reflected part weighed by
+// the saved radiosities, and solves once before refining: the oracle should see the new
+// materials' radiosities, and the next weights are weighed by them.
 void resolve_saved(HierarchicalSystem& sys, const Scene& scene, const HierarchicalState& reuse,
                    SweepLog& log) {
     NodeValues& v = sys.values;
     if (!reuse.weights.empty()) {
-        v.weights = reuse.weights;
+        v.weights = leaf_weights(sys.h, sys.links, v.b, true, reuse.weights);
+        v.weights.reflected_solved = false; // weighed by the saved materials' light
         pull_emit(sys.h, v);
     }
     solve_links(sys.h, sys.links, v, sys.clusters, scene.solver, sys.iteration, sys.emitted, log);
+    sys.solved = true;
 }
 
 const char* pass_name(Iteration iteration) {
@@ -229,8 +232,9 @@ bool run_cycle(HierarchicalSystem& sys, LinkSet& refiner, const Scene& scene, co
     const bool changed = refiner.refine(v.b, v.b_range, on_pass);
     const double refine_s = seconds_since(t0);
     t0 = Clock::now();
-    if (changed || v.weights.empty()) {
-        v.weights = leaf_weights(h, sys.links, v.weights);
+    // The first solve's radiosities weigh every leaf's reflected light afresh.
+    if (changed || v.weights.empty() || (sys.solved && !v.weights.reflected_solved)) {
+        v.weights = leaf_weights(h, sys.links, v.b, sys.solved, v.weights);
         pull_emit(h, v);
     }
     const double weights_s = seconds_since(t0);
@@ -246,6 +250,7 @@ bool run_cycle(HierarchicalSystem& sys, LinkSet& refiner, const Scene& scene, co
         sweeps.residual *= k_intermediate_residual;
     const Solved s =
         solve_links(h, sys.links, v, sys.clusters, sweeps, sys.iteration, sys.emitted, log);
+    sys.solved = true;
     report_cycle(ctx, sys, cycle, s, sweeps.residual, {refine_s, weights_s, seconds_since(t0)});
     progress.update(cycle_start + cycle_share);
     return last;

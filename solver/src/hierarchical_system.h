@@ -41,6 +41,9 @@ struct HierarchicalSystem {
     /// links.
     NodeValues values;
     Iteration iteration = Iteration::jacobi;
+    /// Whether values hold the radiosities of a solve with the scene's materials (the leaf
+    /// weights' reflected part is weighed by them).
+    bool solved = false;
     /// W, largest channel: the power of the sources solved last, what the residual is
     /// relative to.
     double emitted = 0;

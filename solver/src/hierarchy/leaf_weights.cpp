@@ -1,9 +1,11 @@
 // Leaf weights of hierarchical links (see hierarchy/leaf_weights.h). Each leaf evaluates the links
-// of its ancestors after each refinement, and only where the leaf or the ancestor's links are new:
-// some twenty point form factors per link on the Cornell box, no rays.
+// of its ancestors after each refinement, and only where the leaf or the ancestor's links are new
+// (or, once, when the first solve has given the reflected light): some twenty point form factors
+// per link on the Cornell box, no rays.
 
 #include "hierarchy/leaf_weights.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "core/parallel.h"
@@ -20,7 +22,16 @@ std::uint64_t link_word(std::uint32_t far_end, float ff, bool partial) {
            (std::uint64_t(partial) << 63) ^ 0x632be59bd9b4e019ULL;
 }
 
-// A hash of each node's links as receiver and as source (far end, form factor, occlusion).
+// The emission of a receiving link's far end, which its direct weight is weighed by (a re-solve
+// may change it).
+std::uint64_t emission_word(const Rgb& e) {
+    return (std::uint64_t(std::bit_cast<std::uint32_t>(e.r)) << 32 |
+            std::bit_cast<std::uint32_t>(e.g)) ^
+           (std::uint64_t(std::bit_cast<std::uint32_t>(e.b)) << 16);
+}
+
+// A hash of each node's links as receiver (far end, form factor, occlusion, the far end's
+// emission) and as source (far end, form factor, occlusion).
 std::vector<std::uint64_t> link_signatures(const Hierarchy& h, const LinkStore& links,
                                            const LinksBySource& by_source) {
     const std::span<const Link> all = links.links();
@@ -28,8 +39,11 @@ std::vector<std::uint64_t> link_signatures(const Hierarchy& h, const LinkStore& 
     std::vector<std::uint64_t> sig(h.size(), 0);
     parallel_for_index(h.size(), 256, [&](std::size_t a) {
         std::uint64_t s = mix64(a);
-        for (std::uint32_t k = by_receiver[a]; k < by_receiver[a + 1]; ++k)
+        for (std::uint32_t k = by_receiver[a]; k < by_receiver[a + 1]; ++k) {
             s = mix64(s ^ link_word(all[k].source, all[k].ff, all[k].partial()));
+            if (!h.emission[all[k].source].is_black())
+                s = mix64(s ^ emission_word(h.emission[all[k].source]));
+        }
         s = mix64(s ^ 0x9e3779b97f4a7c15ULL); // receiving and sending links differ
         for (std::uint32_t i = by_source.start[a]; i < by_source.start[a + 1]; ++i) {
             const Link& l = all[by_source.order[i]];
@@ -76,44 +90,77 @@ double centroid_form_factor(const Hierarchy& h, const Ends& ends, std::uint32_t 
 
 struct RawWeight {
     float receive = 1, emit = 1;
+    Rgb reflected{1.0f};
 };
+
+// The far ends' light as a receive weight weighs it: emission (a channel sum: one weight for
+// the direct light) and reflected radiosity (per channel), and their form factors alone, the
+// reflected weight's fallback where no reflected light is known.
+struct Seen {
+    double f = 0, emitted = 0;
+    RgbD reflected;
+    void add(double ff, const Rgb& e, const Rgb& r) {
+        f += ff;
+        emitted += ff * e.sum();
+        reflected += RgbD(std::max(r.r, 0.0f), std::max(r.g, 0.0f), std::max(r.b, 0.0f)) * ff;
+    }
+};
+
+float ratio(double seen, double linked, double fallback) {
+    return float(linked > 0 ? seen / linked : fallback);
+}
 
 // Leaf x's unscaled weights for its ancestor a (1 where a has no links of that kind). A partly
 // occluded link keeps its even spread: its visibility from x is not known without rays.
 RawWeight raw_weight(const Hierarchy& h, const LinkStore& links, const LinksBySource& by_source,
-                     const Ends& ends, std::uint32_t x, std::uint32_t a) {
+                     const Ends& ends, const std::vector<Rgb>& b, bool solved, std::uint32_t x,
+                     std::uint32_t a) {
     const std::span<const Link> all = links.links();
     const std::vector<std::uint32_t>& by_receiver = links.receiver_offsets();
     RawWeight w;
-    double seen = 0, linked = 0;
+    Seen seen, linked;
     for (std::uint32_t k = by_receiver[a]; k < by_receiver[a + 1]; ++k) {
         const Link& l = all[k];
-        seen += l.partial() ? double(l.ff) : centroid_form_factor(h, ends, x, l.source);
-        linked += l.ff;
+        const Rgb& e = h.emission[l.source];
+        const Rgb r = solved ? b[l.source] - e : Rgb{};
+        seen.add(l.partial() ? double(l.ff) : centroid_form_factor(h, ends, x, l.source), e, r);
+        linked.add(l.ff, e, r);
     }
-    if (linked > 0)
-        w.receive = float(seen / linked);
+    const double even = linked.f > 0 ? seen.f / linked.f : 1.0;
+    w.receive = ratio(seen.emitted, linked.emitted, 1.0);
+    w.reflected = Rgb(ratio(seen.reflected.r, linked.reflected.r, even),
+                      ratio(seen.reflected.g, linked.reflected.g, even),
+                      ratio(seen.reflected.b, linked.reflected.b, even));
     double sent = 0, share = 0;
     for (std::uint32_t i = by_source.start[a]; i < by_source.start[a + 1]; ++i) {
         const Link& l = all[by_source.order[i]];
-        const double even = h.area[l.receiver] * l.ff / h.area[a]; // F(a → r)
-        sent += l.partial() ? even : centroid_form_factor(h, ends, x, l.receiver);
-        share += even;
+        const double even_share = h.area[l.receiver] * l.ff / h.area[a]; // F(a → r)
+        sent += l.partial() ? even_share : centroid_form_factor(h, ends, x, l.receiver);
+        share += even_share;
     }
     if (share > 0)
         w.emit = float(sent / share);
     return w;
 }
 
+float scaled(double raw, double mean) {
+    return mean > 0 ? float(raw / mean) : 1.0f;
+}
+
 // Divides the weights of each inner node's leaves by their area mean over its leaves; where
 // no leaf sees any far end (a grazing pair), the weights are 1: the links' even spread.
 void scale_to_unit_means(const Hierarchy& h, LeafWeights& w) {
-    std::vector<double> mean_receive(h.size(), 1.0), mean_emit(h.size(), 1.0);
+    struct Means {
+        double receive = 1, emit = 1;
+        RgbD reflected{1, 1, 1};
+    };
+    std::vector<Means> mean(h.size());
     parallel_for_index(h.size(), 16, [&](std::size_t n) {
         const auto a = std::uint32_t(n);
         if (h.is_leaf(a))
             return;
         double r = 0, e = 0;
+        RgbD reflected;
         std::vector<std::uint32_t> stack{a};
         while (!stack.empty()) {
             const std::uint32_t m = stack.back();
@@ -123,22 +170,28 @@ void scale_to_unit_means(const Hierarchy& h, LeafWeights& w) {
                     stack.push_back(std::uint32_t(h.first_child[m] + c));
                 continue;
             }
-            r += h.area[m] * w.raw_receive[w.at(m, h.level[a])];
-            e += h.area[m] * w.raw_emit[w.at(m, h.level[a])];
+            const std::size_t i = w.at(m, h.level[a]);
+            r += h.area[m] * w.raw_receive[i];
+            e += h.area[m] * w.raw_emit[i];
+            reflected += RgbD(w.raw_reflected[i]) * h.area[m];
         }
-        mean_receive[a] = r / h.area[a];
-        mean_emit[a] = e / h.area[a];
+        mean[a] = {r / h.area[a], e / h.area[a], reflected * (1.0 / h.area[a])};
     });
     w.receive.resize(w.raw_receive.size());
     w.emit.resize(w.raw_emit.size());
+    w.receive_reflected.resize(w.raw_reflected.size());
     parallel_for_index(h.size(), 64, [&](std::size_t n) {
         const auto x = std::uint32_t(n);
         if (!h.is_leaf(x))
             return;
         for (std::int32_t a = h.parent[x]; a >= 0; a = h.parent[a]) {
             const std::size_t i = w.at(x, h.level[a]);
-            w.receive[i] = mean_receive[a] > 0 ? float(w.raw_receive[i] / mean_receive[a]) : 1.0f;
-            w.emit[i] = mean_emit[a] > 0 ? float(w.raw_emit[i] / mean_emit[a]) : 1.0f;
+            const Means& m = mean[std::size_t(a)];
+            w.receive[i] = scaled(w.raw_receive[i], m.receive);
+            w.emit[i] = scaled(w.raw_emit[i], m.emit);
+            const Rgb& raw = w.raw_reflected[i];
+            w.receive_reflected[i] = Rgb(scaled(raw.r, m.reflected.r), scaled(raw.g, m.reflected.g),
+                                         scaled(raw.b, m.reflected.b));
         }
     });
 }
@@ -163,7 +216,8 @@ LinksBySource index_by_source(const Hierarchy& h, std::span<const Link> links,
     return s;
 }
 
-LeafWeights leaf_weights(const Hierarchy& h, const LinkStore& links, const LeafWeights& previous) {
+LeafWeights leaf_weights(const Hierarchy& h, const LinkStore& links, const std::vector<Rgb>& b,
+                         bool solved, const LeafWeights& previous) {
     // Weights are per leaf and ancestor: only inner nodes' links are read (a big scene's
     // leaves send most links, and an index of all of them is 4 bytes a link).
     const LinksBySource by_source = index_by_source(h, links.links(), true);
@@ -174,6 +228,10 @@ LeafWeights leaf_weights(const Hierarchy& h, const LinkStore& links, const LeafW
         w.offset[n + 1] = w.offset[n] + (h.is_leaf(std::uint32_t(n)) ? h.level[n] : 0);
     w.raw_receive.assign(w.offset.back(), 1.0f);
     w.raw_emit.assign(w.offset.back(), 1.0f);
+    w.raw_reflected.assign(w.offset.back(), Rgb(1.0f));
+    w.reflected_solved = solved;
+    // Reflected weights of a solve are kept only for the same materials' next solves.
+    const bool keep_reflected = solved && previous.reflected_solved;
     // A leaf is known if it was one last cycle (nodes keep their ids, a leaf its entry count,
     // ancestors have lower ids).
     const std::size_t old_nodes = previous.empty() ? 0 : previous.offset.size() - 1;
@@ -188,14 +246,19 @@ LeafWeights leaf_weights(const Hierarchy& h, const LinkStore& links, const LeafW
             return;
         for (std::int32_t a = h.parent[x]; a >= 0; a = h.parent[a]) {
             const std::size_t i = w.at(x, h.level[a]);
-            if (known(x) && previous.signature[std::size_t(a)] == w.signature[std::size_t(a)]) {
-                w.raw_receive[i] = previous.raw_receive[previous.at(x, h.level[a])];
-                w.raw_emit[i] = previous.raw_emit[previous.at(x, h.level[a])];
+            if (keep_reflected && known(x) &&
+                previous.signature[std::size_t(a)] == w.signature[std::size_t(a)]) {
+                const std::size_t j = previous.at(x, h.level[a]);
+                w.raw_receive[i] = previous.raw_receive[j];
+                w.raw_emit[i] = previous.raw_emit[j];
+                w.raw_reflected[i] = previous.raw_reflected[j];
                 continue;
             }
-            const RawWeight r = raw_weight(h, links, by_source, ends, x, std::uint32_t(a));
+            const RawWeight r =
+                raw_weight(h, links, by_source, ends, b, solved, x, std::uint32_t(a));
             w.raw_receive[i] = r.receive;
             w.raw_emit[i] = r.emit;
+            w.raw_reflected[i] = r.reflected;
         }
     });
     scale_to_unit_means(h, w);

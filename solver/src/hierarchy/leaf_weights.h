@@ -10,10 +10,18 @@
 // middle of a lit wall at its area share although it sends more than that (the indirect light
 // of CIE 171 test 5.8 0.6 % short on coarse elements). So every leaf x gets, for each
 // ancestor a, weights in proportion to its own form factors toward the far ends of a's links
-// (issue #4):
+// (issue #4), each far end counted with what it sends (issue #27):
 //
-//   receive_a(x) ∝ Σ_{links a ← s} F(x → s) / Σ F(a → s)           (a's irradiance at x)
+//   receive_a(x) ∝ Σ_{links a ← s} F(x → s) E_s / Σ F(a → s) E_s       (a's direct light at x)
+//   reflected_a(x) ∝ Σ_{links a ← s} F(x → s) R_s / Σ F(a → s) R_s     (per channel)
 //   emit_a(x)    ∝ Σ_{links r ← a} F(x → r) / Σ A_r F(r → a) / A_a  (x's share of what a sends)
+//
+// with E_s the far end's emission and R_s its reflected radiosity B − E. Weighing the far ends
+// by one common F made a leaf in a dim concave corner, which sees more of the dim walls beside
+// it and as much of the bright ones as the rest of its node, take the node's irradiance times
+// its larger F: on the Cornell box 45 % too much light on the back wall by the green wall and
+// the ceiling. R_s comes from the last solve: before the first, reflected_a falls back to the
+// far ends' form factors alone.
 //
 // (A_x F(x → r) = A_r F(r → x)), each scaled to an area mean of 1 over a's leaves; a partly
 // occluded link counts with its mean, F(a → s), for every leaf, as its visibility from the
@@ -36,11 +44,17 @@ struct LeafWeights {
     /// ancestor's level (inner nodes have none).
     std::vector<std::uint32_t> offset;
     std::vector<float> receive, emit;
+    std::vector<Rgb> receive_reflected;
     /// The same before the scaling to unit means, and a hash of each node's links (its sent
     /// ones only where it is an inner node, the only nodes read): what the
     /// next refinement cycle reuses where neither the leaf nor the ancestor's links changed.
     std::vector<float> raw_receive, raw_emit;
+    std::vector<Rgb> raw_reflected;
     std::vector<std::uint64_t> signature;
+    /// Whether receive_reflected was weighed by the reflected radiosities of a solve with
+    /// these materials; until then (before the first solve, after loading a saved state) the
+    /// next weights weigh every entry afresh. Not saved.
+    bool reflected_solved = false;
 
     bool empty() const { return offset.empty(); }
     /// Index of leaf \p x's weights for its ancestor at level \p level.
@@ -58,9 +72,13 @@ LinksBySource index_by_source(const Hierarchy& h, std::span<const Link> links,
                               bool inner_sources_only = false);
 
 /// \brief The weights of every leaf for each of its ancestors: the far ends of the ancestor's
-///        element links seen from the leaf's centroid (analytic point form factors, no rays).
-///        Entries whose leaf and whose ancestor's links are as in \p previous (the last
-///        cycle's weights, or none) are taken from it. Parallel over leaves, deterministic.
-LeafWeights leaf_weights(const Hierarchy& h, const LinkStore& links, const LeafWeights& previous);
+///        element links seen from the leaf's centroid (analytic point form factors, no rays),
+///        weighed by their emission and by their reflected part of \p b (node radiosities;
+///        \p solved: of a solve, else nothing is known of the reflected light yet). Entries
+///        whose leaf and whose ancestor's links are as in \p previous (the last cycle's
+///        weights, or none) are taken from it, the reflected ones only if previous weighed
+///        them by a solve's radiosities. Parallel over leaves, deterministic.
+LeafWeights leaf_weights(const Hierarchy& h, const LinkStore& links, const std::vector<Rgb>& b,
+                         bool solved, const LeafWeights& previous);
 
 } // namespace penumbra::solver

@@ -68,7 +68,8 @@ public:
         : h_(h), links_(links), v_(v), clusters_(clusters),
           by_source_(index_by_source(h, links.links())), trees_(tree_nodes(h)),
           root_of_(h.root_of_nodes()), unshot_(h.size()), pending_link_(h.size()),
-          pending_even_(h.size()), power_(h.root_count, 0.0), top_(h.root_count) {
+          pending_emitted_(h.size()), pending_even_(h.size()), power_(h.root_count, 0.0),
+          top_(h.root_count) {
         if (clusters_.enabled)
             shot_.assign(h.size(), Rgb{});
     }
@@ -167,10 +168,16 @@ private:
             const std::uint32_t x = trees_.nodes[i];
             if (!h_.is_leaf(x))
                 continue;
-            Rgb dh = pending_even_[x] + pending_link_[x];
+            Rgb dh = pending_even_[x] + pending_link_[x] + pending_emitted_[x];
             for (std::int32_t a = h_.parent[x]; a >= 0; a = h_.parent[a]) {
-                const float w = weighted ? v_.weights.receive[v_.weights.at(x, h_.level[a])] : 1.0f;
-                dh += pending_even_[a] + pending_link_[a] * w;
+                dh += pending_even_[a];
+                if (!weighted) {
+                    dh += pending_link_[a] + pending_emitted_[a];
+                    continue;
+                }
+                const std::size_t k = v_.weights.at(x, h_.level[a]);
+                dh += pending_link_[a] * v_.weights.receive_reflected[k] +
+                      pending_emitted_[a] * v_.weights.receive[k];
             }
             if (magnitude(dh) == 0)
                 continue;
@@ -183,6 +190,7 @@ private:
         for (std::uint32_t i = begin; i < end; ++i) {
             pending_even_[trees_.nodes[i]] = Rgb{};
             pending_link_[trees_.nodes[i]] = Rgb{};
+            pending_emitted_[trees_.nodes[i]] = Rgb{};
         }
     }
 
@@ -212,9 +220,10 @@ private:
             const Rgb u = unshot_[n];
             if (magnitude(u) == 0)
                 continue;
+            const bool emits = !h_.emission[n].is_black();
             for (std::uint32_t k = by_source_.start[n]; k < by_source_.start[n + 1]; ++k) {
                 const Link& l = all[by_source_.order[k]];
-                receive(l.receiver, u * l.ff, pending_link_);
+                receive(l.receiver, u * l.ff, emits ? pending_emitted_ : pending_link_);
             }
         }
         if (clusters_.enabled) {
@@ -242,6 +251,9 @@ private:
     std::vector<std::uint32_t> root_of_;
     std::vector<Rgb> unshot_;       ///< leaves: unshot radiosity; inner nodes: scratch
     std::vector<Rgb> pending_link_; ///< irradiance arrived through element links, not spread
+    /// The same from emitting sources, spread by the direct light's weights (what an emitter
+    /// sends after its first shot, its reflected light, is counted with it).
+    std::vector<Rgb> pending_emitted_;
     std::vector<Rgb> pending_even_; ///< irradiance arrived through cluster links
     std::vector<Rgb> shot_;         ///< radiosity shot since the last cluster round (area means)
     bool any_shot_ = false;

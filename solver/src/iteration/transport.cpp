@@ -98,11 +98,12 @@ Rgb push_pull(const Hierarchy& h, NodeValues& v, std::uint32_t node, const Rgb& 
     const bool weighted = !v.weights.empty();
     Rgb b;
     if (h.is_leaf(node)) {
-        // The ancestors' element links by this leaf's receive weights rather than evenly.
+        // The ancestors' element links by this leaf's receive weights rather than evenly: the
+        // direct light by the emitters' weight, the reflected light by its own per channel.
         for (std::int32_t a = weighted ? h.parent[node] : -1; a >= 0; a = h.parent[a]) {
-            const float extra = v.weights.receive[v.weights.at(node, h.level[a])] - 1.0f;
-            hd += v.link_direct[a] * extra;
-            hi += v.link_indirect[a] * extra;
+            const std::size_t i = v.weights.at(node, h.level[a]);
+            hd += v.link_direct[a] * (v.weights.receive[i] - 1.0f);
+            hi += v.link_indirect[a] * (v.weights.receive_reflected[i] - Rgb(1.0f));
         }
         b = h.emission[node] + h.reflectance[node] * (hd + hi);
         if (!v.transmitted.empty())

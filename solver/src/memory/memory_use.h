@@ -46,15 +46,17 @@ inline constexpr std::size_t k_values_bytes_per_node = [] {
            item<decltype(LeafWeights::offset)> + item<decltype(LeafWeights::signature)>;
 }();
 
-/// Levels of ancestors a leaf's weights are counted for: a leaf has one entry of four floats
-/// (LeafWeights::receive, emit and their raw values) per ancestor.
+/// Levels of ancestors a leaf's weights are counted for: a leaf has one entry per ancestor, of
+/// four floats (LeafWeights::receive, emit and their raw values) and two RGB values
+/// (receive_reflected and its raw value).
 inline constexpr std::size_t k_weight_levels = 8;
 
 /// Bytes per node in all: a growing std::vector briefly holds its old block and its new one,
 /// hence twice the arrays.
 inline constexpr std::size_t k_bytes_per_node =
     2 * (k_hierarchy_bytes_per_node + k_values_bytes_per_node +
-         k_weight_levels * 4 * memory_detail::item<decltype(LeafWeights::receive)>);
+         k_weight_levels * (4 * memory_detail::item<decltype(LeafWeights::receive)> +
+                            2 * memory_detail::item<decltype(LeafWeights::receive_reflected)>));
 
 /// Bytes per element link: the link, and refinement's per-link bytes (its decision and
 /// whether its oracle said keep).

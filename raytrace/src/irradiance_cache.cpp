@@ -60,24 +60,20 @@ Rgb extrapolated(const IrradianceRecord& r, const Vec3& p, const Vec3& n) {
 IrradianceCache::IrradianceCache(std::vector<IrradianceRecord> records, double error)
     : records_(std::move(records)), error_(error), grid_(make_grid(records_, error)) {}
 
-IrradianceCache::Grid IrradianceCache::make_grid(const std::vector<IrradianceRecord>& records,
-                                                 double error) {
-    Grid grid;
-    if (records.empty())
-        return grid;
+IrradianceCache::Grid IrradianceCache::sized_grid(const std::vector<IrradianceRecord>& records,
+                                                  const std::vector<double>& reach) {
     constexpr double inf = std::numeric_limits<double>::infinity();
     Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
-    std::vector<double> reach;
-    for (const IrradianceRecord& r : records) {
-        reach.push_back(error * r.radius_m);
-        const Vec3 d{reach.back(), reach.back(), reach.back()};
-        lo = min(lo, r.p - d);
-        hi = max(hi, r.p + d);
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        const Vec3 d{reach[i], reach[i], reach[i]};
+        lo = min(lo, records[i].p - d);
+        hi = max(hi, records[i].p + d);
     }
     // Cells of the median reach: a typical record spans a few cells, a lookup sees few.
     std::vector<double> sorted = reach;
     std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2),
                      sorted.end());
+    Grid grid;
     grid.cell_m = sorted[sorted.size() / 2];
     const Vec3 extent = hi - lo;
     const auto cells_along = [&](double e) { return std::max(1.0, std::ceil(e / grid.cell_m)); };
@@ -86,6 +82,17 @@ IrradianceCache::Grid IrradianceCache::make_grid(const std::vector<IrradianceRec
     grid.origin = lo;
     grid.cells = {int(cells_along(extent.x)), int(cells_along(extent.y)),
                   int(cells_along(extent.z))};
+    return grid;
+}
+
+IrradianceCache::Grid IrradianceCache::make_grid(const std::vector<IrradianceRecord>& records,
+                                                 double error) {
+    if (records.empty())
+        return {};
+    std::vector<double> reach;
+    for (const IrradianceRecord& r : records)
+        reach.push_back(error * r.radius_m);
+    Grid grid = sized_grid(records, reach);
     const auto index = [&](double x, double o, int n) {
         return std::clamp(int(std::floor((x - o) / grid.cell_m)), 0, n - 1);
     };

@@ -66,6 +66,9 @@ private:
         std::vector<std::uint32_t> items;
     };
     static Grid make_grid(const std::vector<IrradianceRecord>& records, double error);
+    /// An empty grid over the boxes of radius \p reach around the records.
+    static Grid sized_grid(const std::vector<IrradianceRecord>& records,
+                           const std::vector<double>& reach);
 
     template <typename Visit> void visit_valid(const Vec3& p, const Vec3& n, Visit&& visit) const;
 

@@ -473,7 +473,6 @@ std::optional<IrradianceCache> place_records(const PathTracer& tracer, const Emb
                                              const RenderOptions& options, const Context& ctx) {
     if (!options.irradiance_cache || options.gather != GatherMode::final_gather)
         return std::nullopt;
-    ProgressStage stage(ctx, "irradiance cache");
     return build_irradiance_cache(
         rt, SurfaceGeometry(rt, scene), make_camera(camera), *options.irradiance_cache,
         [&](const SurfaceHit& s, const Vec3& wi, Pcg32& rng) {

@@ -31,15 +31,16 @@ constexpr double k_max_reach_px = 20.0;
 /// At most this many cells in the lookup grid: past it, its cells grow.
 constexpr double k_max_grid_cells = double(1 << 22);
 
-/// Ward's ε of record \p r at (p, n); infinite where the record does not apply: the point
-/// lies in front of it (something between may shadow it) or faces away.
+/// Ward's ε of record \p r at (p, n); infinite where the record does not apply: it lies in
+/// front of the point (the point is behind its plane: in a corner or under what the record
+/// sees) or faces away.
 double ward_error(const IrradianceRecord& r, const Vec3& p, const Vec3& n) {
     const double facing = dot(n, r.n);
     if (!(facing > 0))
         return std::numeric_limits<double>::infinity();
     const Vec3 d = p - r.p;
-    // Ward's test: a point more than a hundredth of the reach in front of the record's plane
-    // sees what the record's rays did not.
+    // Ward's test: a point more than a hundredth of R behind the record's plane (the mean of
+    // both normals) may be shadowed by what the record's rays met.
     if (dot(d, n + r.n) * 0.5 < -0.01 * r.radius_m)
         return std::numeric_limits<double>::infinity();
     return length(d) / r.radius_m + std::sqrt(std::max(0.0, 1.0 - facing));
@@ -279,7 +280,6 @@ IrradianceRecord compute_record(const SurfaceHit& s, double footprint_m, double 
 struct Candidate {
     SurfaceHit s;
     double footprint_m = 0;
-    int x = 0, y = 0;
 };
 
 std::optional<Candidate> candidate_at(const EmbreeScene& rt, const SurfaceGeometry& surfaces,
@@ -289,7 +289,7 @@ std::optional<Candidate> candidate_at(const EmbreeScene& rt, const SurfaceGeomet
     if (hit.element < 0 || !cacheable(surfaces.material_of(std::uint32_t(hit.element))))
         return std::nullopt;
     const double pixel_angle = 2.0 * length(camera.right) / camera.width;
-    return Candidate{surfaces.surface_of(hit, camera.eye, dir), double(hit.t) * pixel_angle, x, y};
+    return Candidate{surfaces.surface_of(hit, camera.eye, dir), double(hit.t) * pixel_angle};
 }
 
 } // namespace
@@ -298,6 +298,7 @@ IrradianceCache build_irradiance_cache(const EmbreeScene& rt, const SurfaceGeome
                                        const PinholeCamera& camera,
                                        const IrradianceCacheSettings& settings,
                                        const RecordTracer& trace, const Context& ctx) {
+    ProgressStage stage(ctx, "irradiance cache");
     const Strata strata(settings.rays);
     std::vector<IrradianceRecord> records;
     IrradianceCache cache({}, settings.error);
@@ -323,6 +324,8 @@ IrradianceCache build_irradiance_cache(const EmbreeScene& rt, const SurfaceGeome
             if (r)
                 records.push_back(std::move(*r));
         cache = IrradianceCache(records, settings.error);
+        // A grid of half the step has four times the points.
+        stage.update(double(k_finest_grid_px * k_finest_grid_px) / (grid * grid));
     }
     ctx.debug("irradiance cache: {} records of {} rays", records.size(), strata.m * strata.n);
     return cache;

@@ -92,6 +92,7 @@ struct RenderFlags {
     std::optional<int> photons;            ///< unset: the scene's render.caustic_photons
     std::optional<double> photon_radius_m; ///< unset: the scene's render.caustic_radius
     std::string solution; ///< an earlier bake's folder (or its solver state) to start from
+    std::optional<std::string> irradiance_cache; ///< "on" or "off"; unset: the scene's
 };
 
 /// `penumbra annual`'s own flags; the scene and element flags are BakeFlags'.
@@ -312,6 +313,12 @@ int run_render(const RenderFlags& flags, const CommonFlags& common) {
     render.spp = flags.spp > 0 ? flags.spp : scene.camera->samples_per_pixel;
     render.gather = *parse_enum<raytrace::GatherMode>(flags.gather);
     render.gather_depth = flags.gather_depth;
+    render.irradiance_cache = scene.render.irradiance_cache;
+    if (flags.irradiance_cache)
+        render.irradiance_cache =
+            *flags.irradiance_cache == "on"
+                ? std::optional(scene.render.irradiance_cache.value_or(IrradianceCacheSettings{}))
+                : std::nullopt;
     std::shared_ptr<const solver::HierarchicalState> previous;
     if (!flags.solution.empty())
         previous = read_state(scene, flags.solution, "--solution");
@@ -487,6 +494,11 @@ int main(int argc, char** argv) {
         ->add_option("--gather-depth", render.gather_depth,
                      "final: diffuse bounces traced before the solution is read (default 0)")
         ->check(CLI::Range(0, 64));
+    render_cmd
+        ->add_option("--irradiance-cache", render.irradiance_cache,
+                     "final: on = indirect light at Lambertian camera hits from Ward's "
+                     "irradiance cache (default: the scene's render.irradiance_cache, else off)")
+        ->check(CLI::IsMember({"on", "off"}));
     add_memory_flag(*render_cmd, common);
     render_cmd
         ->add_option("--photons", render.photons,

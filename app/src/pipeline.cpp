@@ -41,6 +41,7 @@ raytrace::RenderOptions default_render_options(const Scene& scene) {
     const bool lobes = std::any_of(scene.materials.begin(), scene.materials.end(),
                                    [](const Material& m) { return m.lobe.has_value(); });
     options.gather = lobes ? raytrace::GatherMode::final_gather : raytrace::GatherMode::radiosity;
+    options.irradiance_cache = scene.render.irradiance_cache;
     return options;
 }
 

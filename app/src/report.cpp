@@ -75,6 +75,7 @@ std::string render_json(const Scene& scene, const BakeResult& result) {
     j["scene_file"] = scene.file;
     j["gather"] = enum_name(result.render_options.gather);
     j["gather_depth"] = result.render_options.gather_depth;
+    j["irradiance_cache"] = result.render_options.irradiance_cache.has_value();
     j["spp"] = result.render_options.spp;
     j["width"] = result.render ? result.render->width : 0;
     j["height"] = result.render ? result.render->height : 0;

@@ -564,6 +564,11 @@ void validate_settings(const Scene& scene) {
     check(!render.caustic_radius_m ||
               (std::isfinite(*render.caustic_radius_m) && *render.caustic_radius_m > 0),
           scene, "render.caustic_radius", "must be finite and > 0");
+    const auto& cache = render.irradiance_cache;
+    check(!cache || (cache->rays >= 16 && cache->rays <= 1 << 16), scene,
+          "render.irradiance_cache.rays", "must be in [16, 65536]");
+    check(!cache || (cache->error >= 1e-3 && cache->error <= 1), scene,
+          "render.irradiance_cache.error", "must be in [0.001, 1]");
     check(!scene.lightmap ||
               (scene.lightmap->atlas_size >= 16 && scene.lightmap->atlas_size <= 16384),
           scene, "lightmap.size", "must be in [16, 16384]");

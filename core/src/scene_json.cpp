@@ -1037,13 +1037,26 @@ SolverSettings parse_solver(const Field& field, double metres_per_unit) {
     return solver;
 }
 
+// "irradiance_cache": true, false, or {"rays": n, "error": a} (on, with these settings).
+std::optional<IrradianceCacheSettings> parse_irradiance_cache(const Field& field) {
+    if (!field.is_object())
+        return field.boolean() ? std::optional(IrradianceCacheSettings{}) : std::nullopt;
+    field.expect_keys({"rays", "error"});
+    IrradianceCacheSettings cache;
+    if (field.has("rays"))
+        cache.rays = int(field.child("rays").integer(16, 1 << 16));
+    if (field.has("error"))
+        cache.error = number_in(field.child("error"), 1e-3, 1.0, "[0.001, 1]");
+    return cache;
+}
+
 // "render": {"spp": n, "max_bounces": n, "pixel_filter": "box", "filter_width_px": w,
-// "caustic_photons": n, "caustic_radius": r}; spp is the camera's (as image.spp: give one of
-// them); caustic_radius is in scene units.
+// "caustic_photons": n, "caustic_radius": r, "irradiance_cache": …}; spp is the camera's (as
+// image.spp: give one of them); caustic_radius is in scene units.
 void parse_render(const Field& root, double metres_per_unit, Scene& scene) {
     const Field field = root.child("render");
     field.expect_keys({"spp", "max_bounces", "pixel_filter", "filter_width_px", "caustic_photons",
-                       "caustic_radius"});
+                       "caustic_radius", "irradiance_cache"});
     if (field.has("spp")) {
         if (!scene.camera)
             field.child("spp").fail("needs a 'camera'");
@@ -1066,6 +1079,8 @@ void parse_render(const Field& root, double metres_per_unit, Scene& scene) {
     if (field.has("caustic_radius"))
         render.caustic_radius_m =
             number_in(field.child("caustic_radius"), 1e-9, 1e9, "(0, 1e9]") * metres_per_unit;
+    if (field.has("irradiance_cache"))
+        render.irradiance_cache = parse_irradiance_cache(field.child("irradiance_cache"));
 }
 
 LightmapSettings parse_lightmap(const Field& field) {

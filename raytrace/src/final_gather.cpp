@@ -16,6 +16,7 @@
 #include "raytrace/raytrace.h"
 
 #include "camera.h"
+#include "irradiance_cache.h"
 #include "path_geometry.h"
 #include "photon_map.h"
 
@@ -124,6 +125,31 @@ public:
         return radiance * float(k_pi);
     }
 
+    /// One of an irradiance record's rays from \p s along \p wi (irradiance_cache.h): the
+    /// light a gather ray from a camera path's first diffuse hit brings beyond direct light,
+    /// which each camera sample takes itself; and the distance to its first hit.
+    RecordRay record_ray(const SurfaceHit& s, const Vec3& wi, Pcg32& rng) const {
+        PathState path;
+        path.origin = surfaces_.offset(s, wi);
+        path.dir = wi;
+        path.last.delta = path.last.only_delta = false;
+        // A density of 0 gives emitters, the sky and the sun met by this first ray no weight
+        // against light sampling (power_heuristic(0, p) = 0): they are direct light.
+        path.last.pdf = 0;
+        path.last.sky_normal = s.shading;
+        path.bounces = path.diffuse_bounces = 1;
+        path.last.gather = options_.gather == GatherMode::final_gather && 1 > options_.gather_depth;
+        path.last.near_distance = k_near_gather_sizes * surfaces_.element_size(s.element);
+        path.last.after_receiver = caustics_ != nullptr; // the record's point receives caustics
+        const auto first = rt_.intersect(Vec3f(path.origin), Vec3f(wi), 0.0f, k_infinity);
+        const double distance =
+            first.front_element < 0 ? std::numeric_limits<double>::infinity() : double(first.t);
+        return {follow(path, rng), distance};
+    }
+
+    /// Camera paths read \p cache at their first Lambertian hit (null: never).
+    void read_cache(const IrradianceCache* cache) { cache_ = cache; }
+
 private:
     /// Radiance arriving along \p path's ray, and what the path scatters on from there.
     Rgb follow(PathState path, Pcg32& rng) const {
@@ -163,6 +189,10 @@ private:
             // lobe, reaches that receiver as a caustic.
             if (!bsdf.is_delta() && !(last.after_receiver && passes_photons(material)))
                 radiance += beta * direct(bsdf, surface, wo, rng);
+            if (const auto cached = cached_light(hit, surface, bsdf, wo, diffuse_bounces, rng)) {
+                radiance += beta * *cached;
+                break;
+            }
             const double u_lobe = rng.next_double();
             const Vec2 u{rng.next_double(), rng.next_double()};
             const auto sample = bsdf.sample(wo, u_lobe, u);
@@ -194,6 +224,39 @@ private:
             }
         }
         return radiance;
+    }
+
+    /// At a camera path's first diffuse hit, on a Lambertian surface where a record of the
+    /// cache is valid: ρ/π times the cached indirect irradiance, and the emitted light of one
+    /// BSDF sample (its half of direct light's MIS; light sampling took the other). None
+    /// elsewhere: the path goes on and gathers.
+    std::optional<Rgb> cached_light(const EmbreeScene::Hit& hit, const SurfaceHit& s,
+                                    const Bsdf& bsdf, const Vec3& wo, int diffuse_bounces,
+                                    Pcg32& rng) const {
+        const Material& material = surfaces_.material_of(s.element);
+        if (!cache_ || hit.element < 0 || diffuse_bounces > 0 || !cacheable(material))
+            return std::nullopt;
+        const auto irradiance = cache_->irradiance(s.p, s.shading);
+        if (!irradiance)
+            return std::nullopt;
+        Rgb light = material.reflectance * *irradiance * float(k_inv_pi);
+        const Vec2 u{rng.next_double(), rng.next_double()};
+        const auto sample = bsdf.sample(wo, 0.0, u);
+        if (!sample || sample->weight.is_black() ||
+            !SurfaceGeometry::geometric_side_agrees(s, wo, sample->wi, false))
+            return light;
+        LastScatter last;
+        last.delta = last.only_delta = false;
+        last.pdf = sample->pdf;
+        last.sky_normal = SurfaceGeometry::facing(s.shading, wo);
+        const auto next = rt_.intersect(Vec3f(surfaces_.offset(s, sample->wi)), Vec3f(sample->wi),
+                                        0.0f, k_infinity);
+        if (next.front_element < 0)
+            return light + sample->weight * escaped(sample->wi, last);
+        if (next.element >= 0)
+            light +=
+                sample->weight * emitted(std::uint32_t(next.element), next.t, sample->wi, last);
+        return light;
     }
 
     /// Fraction of the light that passes from \p from along unit \p dir over \p distance
@@ -358,6 +421,7 @@ private:
     AreaLights lights_;
     SurfaceGeometry surfaces_;
     const CausticMap* caustics_ = nullptr;
+    const IrradianceCache* cache_ = nullptr;
     Material white_{"white", Rgb(1.0f)}; ///< the texels' gather surface: f = 1/π
     bool has_glazing_ = false;
     double sun_cos_max_ = 1, sun_solid_angle_ = 0;
@@ -403,6 +467,20 @@ struct PixelSampler {
     }
 };
 
+/// The irradiance cache of \p camera's view when \p options ask for it (final mode).
+std::optional<IrradianceCache> place_records(const PathTracer& tracer, const EmbreeScene& rt,
+                                             const Scene& scene, const Camera& camera,
+                                             const RenderOptions& options, const Context& ctx) {
+    if (!options.irradiance_cache || options.gather != GatherMode::final_gather)
+        return std::nullopt;
+    return build_irradiance_cache(
+        rt, SurfaceGeometry(rt, scene), make_camera(camera), *options.irradiance_cache,
+        [&](const SurfaceHit& s, const Vec3& wi, Pcg32& rng) {
+            return tracer.record_ray(s, wi, rng);
+        },
+        ctx);
+}
+
 void check_options(const RenderOptions& options, const Solution& solution,
                    const RadiosityMesh& mesh) {
     if (options.spp < 1)
@@ -430,8 +508,11 @@ Image render_final_gather(const EmbreeScene& rt, const Scene& scene, const Solut
     std::optional<CausticMap> caustics;
     if (options.gather == GatherMode::final_gather)
         caustics.emplace(shoot_caustic_photons(rt, scene, ctx));
-    const PathTracer tracer(rt, scene, solution, options,
-                            caustics && !caustics->empty() ? &*caustics : nullptr);
+    PathTracer tracer(rt, scene, solution, options,
+                      caustics && !caustics->empty() ? &*caustics : nullptr);
+    const std::optional<IrradianceCache> cache =
+        place_records(tracer, rt, scene, sampled, options, ctx);
+    tracer.read_cache(cache ? &*cache : nullptr);
     const PixelSampler sampler{tracer,
                                make_thin_lens(sampled),
                                strata_per_axis(options.spp),

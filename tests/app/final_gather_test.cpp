@@ -33,10 +33,6 @@ Image render(const app::BakeResult& baked, const Scene& scene, const RenderOptio
     return raytrace::render_final_gather(rt, scene, baked.solution, *scene.camera, options, ctx);
 }
 
-double luminance(const Rgb& c) {
-    return 0.265 * c.r + 0.670 * c.g + 0.065 * c.b;
-}
-
 struct Moments {
     double mean = 0, sd = 0;
 };
@@ -152,7 +148,7 @@ double second_moment_px2(const Image& image) {
     double sum = 0, sx = 0, sy = 0;
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
-            const double w = luminance(image.at(x, y));
+            const double w = test::tile_luminance(image.at(x, y));
             sum += w;
             sx += w * (x + 0.5);
             sy += w * (y + 0.5);
@@ -162,7 +158,7 @@ double second_moment_px2(const Image& image) {
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
             const double dx = x + 0.5 - cx, dy = y + 0.5 - cy;
-            m += luminance(image.at(x, y)) * (dx * dx + dy * dy);
+            m += test::tile_luminance(image.at(x, y)) * (dx * dx + dy * dy);
         }
     return m / sum - 2.0 / 12.0;
 }
@@ -373,7 +369,7 @@ TEST(RenderCommand, NamedCameraRendersItsOwnView) {
     const auto brightest = [](const Image& image) {
         double m = 0;
         for (const Rgb& p : image.pixels)
-            m = std::max(m, luminance(p));
+            m = std::max(m, test::tile_luminance(p));
         return m;
     };
     EXPECT_LT(brightest(corner), 0.5 * brightest(main));
@@ -395,7 +391,7 @@ TEST(RenderCommand, UnknownCameraIsAOneLineError) {
 double mean_luminance(const Image& image) {
     double sum = 0;
     for (const Rgb& p : image.pixels)
-        sum += luminance(p);
+        sum += test::tile_luminance(p);
     return sum / double(image.pixels.size());
 }
 

@@ -350,6 +350,24 @@ TEST(SceneIo, NamedCamerasAndCausticSettings) {
     expect_one_line_error(dir + "/twice.json", {"cameras", "named twice"}, "twice.json");
 }
 
+TEST(SceneIo, IrradianceCacheIsABooleanOrItsSettings) {
+    const std::string dir = test::temp_dir("scene-irradiance-cache");
+    const auto cache_of = [&](const std::string& value) {
+        write_file(dir, "c.json",
+                   lamp_scene(R"json(, "render": {"irradiance_cache": )json" + value + "}"));
+        return load_scene(dir + "/c.json").render.irradiance_cache;
+    };
+    write_file(dir, "none.json", lamp_scene());
+    EXPECT_FALSE(load_scene(dir + "/none.json").render.irradiance_cache.has_value());
+    EXPECT_FALSE(cache_of("false").has_value());
+    ASSERT_TRUE(cache_of("true").has_value());
+    EXPECT_EQ(cache_of("true")->rays, IrradianceCacheSettings{}.rays);
+    const auto set = cache_of(R"json({"rays": 64, "error": 0.3})json");
+    ASSERT_TRUE(set.has_value());
+    EXPECT_EQ(set->rays, 64);
+    EXPECT_EQ(set->error, 0.3);
+}
+
 TEST(SceneIo, BadSunsNameTheKey) {
     const std::string dir = test::temp_dir("scene-bad-sun");
     struct Case {

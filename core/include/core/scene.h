@@ -203,6 +203,13 @@ template <>
 inline constexpr std::span<const EnumName<PixelFilter>> k_enum_names<PixelFilter> =
     k_pixel_filter_names;
 
+/// \brief Ward's irradiance cache for the final gather's indirect light at Lambertian camera
+///        hits (scene key `render.irradiance_cache`, issue #28; docs/rendering.md).
+struct IrradianceCacheSettings {
+    int rays = 256;     ///< stratified gather rays per record (rounded up to a square), >= 16
+    double error = 0.2; ///< Ward's a in (0, 1]: records reach further as it grows
+};
+
 /// \brief Settings of `penumbra render` (scene key `render`, issue #28); its samples per pixel
 ///        are Camera::samples_per_pixel.
 struct RenderSettings {
@@ -213,6 +220,8 @@ struct RenderSettings {
     int caustic_photons = 100000;
     /// Radius of the caustic density estimate, metres; unset = chosen from the scene.
     std::optional<double> caustic_radius_m;
+    /// Set: the final gather reads Ward's irradiance cache at Lambertian camera hits.
+    std::optional<IrradianceCacheSettings> irradiance_cache;
 };
 
 /// \brief Lightmap baking (scene key `lightmap`, issue #29).

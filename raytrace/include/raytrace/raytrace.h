@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -118,6 +119,9 @@ struct RenderOptions {
     /// Diffuse bounces traced before the solution is read (final mode): 0 = at the first
     /// diffuse hit's gather rays.
     int gather_depth = 0;
+    /// Set (final mode): indirect light at the first Lambertian hit of each camera path comes
+    /// from Ward's irradiance cache where a record is valid (docs/rendering.md).
+    std::optional<IrradianceCacheSettings> irradiance_cache;
 };
 
 /// \brief A caustic photon, stored where it first landed on a surface with a diffuse part after

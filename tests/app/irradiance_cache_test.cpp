@@ -13,8 +13,8 @@
 
 #include "app/pipeline.h"
 #include "common/bake_util.h"
-#include "common/test_util.h"
 #include "common/reference_tiles.h"
+#include "common/test_util.h"
 #include "core/image.h"
 #include "raytrace/raytrace.h"
 

@@ -564,6 +564,12 @@ void validate_settings(const Scene& scene) {
     check(!render.caustic_radius_m ||
               (std::isfinite(*render.caustic_radius_m) && *render.caustic_radius_m > 0),
           scene, "render.caustic_radius", "must be finite and > 0");
+    check(render.light_samples >= 1 && render.light_samples <= 1024, scene, "render.light_samples",
+          fmt::format("must be in [1, 1024], got {}", render.light_samples));
+    check(render.gather_rays >= 1 && render.gather_rays <= 1024, scene, "render.gather_rays",
+          fmt::format("must be in [1, 1024], got {}", render.gather_rays));
+    check(std::isfinite(render.edge_tolerance) && render.edge_tolerance >= 0, scene,
+          "render.edge_tolerance", "must be finite and >= 0 (0 = no edge refinement)");
     check(!scene.lightmap ||
               (scene.lightmap->atlas_size >= 16 && scene.lightmap->atlas_size <= 16384),
           scene, "lightmap.size", "must be in [16, 16384]");

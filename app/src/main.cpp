@@ -91,6 +91,9 @@ struct RenderFlags {
     int gather_depth = 0;
     std::optional<int> photons;            ///< unset: the scene's render.caustic_photons
     std::optional<double> photon_radius_m; ///< unset: the scene's render.caustic_radius
+    std::optional<int> light_samples;      ///< unset: the scene's render.light_samples
+    std::optional<int> gather_rays;        ///< unset: the scene's render.gather_rays
+    std::optional<double> edge_tolerance;  ///< unset: the scene's render.edge_tolerance
     std::string solution; ///< an earlier bake's folder (or its solver state) to start from
     std::optional<std::string> irradiance_cache; ///< "on" or "off"; unset: the scene's
 };
@@ -309,6 +312,9 @@ int run_render(const RenderFlags& flags, const CommonFlags& common) {
     scene.render.caustic_photons = flags.photons.value_or(scene.render.caustic_photons);
     if (flags.photon_radius_m)
         scene.render.caustic_radius_m = flags.photon_radius_m;
+    scene.render.light_samples = flags.light_samples.value_or(scene.render.light_samples);
+    scene.render.gather_rays = flags.gather_rays.value_or(scene.render.gather_rays);
+    scene.render.edge_tolerance = flags.edge_tolerance.value_or(scene.render.edge_tolerance);
     raytrace::RenderOptions render;
     render.spp = flags.spp > 0 ? flags.spp : scene.camera->samples_per_pixel;
     render.gather = *parse_enum<raytrace::GatherMode>(flags.gather);
@@ -510,6 +516,21 @@ int main(int argc, char** argv) {
                      "final: a fixed radius of the caustic density estimate, metres (default: "
                      "the 64 nearest photons')")
         ->check(app::positive_number());
+    render_cmd
+        ->add_option("--light-samples", render.light_samples,
+                     "light samples at each camera sample's first diffuse or glossy hit "
+                     "(default: the scene's render.light_samples)")
+        ->check(CLI::Range(1, 1024));
+    render_cmd
+        ->add_option("--gather-rays", render.gather_rays,
+                     "BSDF samples (gather rays) there, rounded up to a square (default: the "
+                     "scene's render.gather_rays)")
+        ->check(CLI::Range(1, 1024));
+    render_cmd
+        ->add_option("--edge-tolerance", render.edge_tolerance,
+                     "edge refinement's tolerance, W/(sr·m²); 0 = none (default: the scene's "
+                     "render.edge_tolerance)")
+        ->check(CLI::Range(0.0, 1e9));
     render_cmd->add_option("--camera", render.scene.camera,
                            "render the camera of the scene's 'cameras' with this name");
     render_cmd->add_option("--solution", render.solution,

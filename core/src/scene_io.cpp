@@ -569,6 +569,12 @@ void validate_settings(const Scene& scene) {
           "render.irradiance_cache.rays", "must be in [16, 65536]");
     check(!cache || (cache->error >= 1e-3 && cache->error <= 1), scene,
           "render.irradiance_cache.error", "must be in [0.001, 1]");
+    check(render.light_samples >= 1 && render.light_samples <= 1024, scene, "render.light_samples",
+          fmt::format("must be in [1, 1024], got {}", render.light_samples));
+    check(render.gather_rays >= 1 && render.gather_rays <= 1024, scene, "render.gather_rays",
+          fmt::format("must be in [1, 1024], got {}", render.gather_rays));
+    check(std::isfinite(render.edge_tolerance) && render.edge_tolerance >= 0, scene,
+          "render.edge_tolerance", "must be finite and >= 0 (0 = no edge refinement)");
     check(!scene.lightmap ||
               (scene.lightmap->atlas_size >= 16 && scene.lightmap->atlas_size <= 16384),
           scene, "lightmap.size", "must be in [16, 16384]");

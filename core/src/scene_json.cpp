@@ -1051,12 +1051,14 @@ std::optional<IrradianceCacheSettings> parse_irradiance_cache(const Field& field
 }
 
 // "render": {"spp": n, "max_bounces": n, "pixel_filter": "box", "filter_width_px": w,
-// "caustic_photons": n, "caustic_radius": r, "irradiance_cache": …}; spp is the camera's (as
-// image.spp: give one of them); caustic_radius is in scene units.
+// "caustic_photons": n, "caustic_radius": r, "light_samples": n, "gather_rays": n,
+// "edge_tolerance": t, "irradiance_cache": …}; spp is the camera's (as image.spp: give one of
+// them); caustic_radius is in scene units.
 void parse_render(const Field& root, double metres_per_unit, Scene& scene) {
     const Field field = root.child("render");
     field.expect_keys({"spp", "max_bounces", "pixel_filter", "filter_width_px", "caustic_photons",
-                       "caustic_radius", "irradiance_cache"});
+                       "caustic_radius", "light_samples", "gather_rays", "edge_tolerance",
+                       "irradiance_cache"});
     if (field.has("spp")) {
         if (!scene.camera)
             field.child("spp").fail("needs a 'camera'");
@@ -1081,6 +1083,12 @@ void parse_render(const Field& root, double metres_per_unit, Scene& scene) {
             number_in(field.child("caustic_radius"), 1e-9, 1e9, "(0, 1e9]") * metres_per_unit;
     if (field.has("irradiance_cache"))
         render.irradiance_cache = parse_irradiance_cache(field.child("irradiance_cache"));
+    if (field.has("light_samples"))
+        render.light_samples = int(field.child("light_samples").integer(1, 1024));
+    if (field.has("gather_rays"))
+        render.gather_rays = int(field.child("gather_rays").integer(1, 1024));
+    if (field.has("edge_tolerance"))
+        render.edge_tolerance = number_in(field.child("edge_tolerance"), 0.0, 1e9, "[0, 1e9]");
 }
 
 LightmapSettings parse_lightmap(const Field& field) {

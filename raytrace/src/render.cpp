@@ -9,6 +9,7 @@
 #include "raytrace/raytrace.h"
 
 #include "camera.h"
+#include "edge_refinement.h"
 
 #include "core/error.h"
 #include "core/parallel.h"
@@ -19,7 +20,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -31,47 +31,6 @@ struct SampledPixel {
     RgbD mean;
     double range = 0; ///< the largest channel's max − min over the samples
 };
-
-// A random permutation of 0 … n − 1 (Fisher–Yates).
-std::vector<int> shuffled(int n, Pcg32& rng) {
-    std::vector<int> p(std::size_t(n), 0);
-    std::iota(p.begin(), p.end(), 0);
-    for (int i = n - 1; i > 0; --i)
-        std::swap(p[std::size_t(i)], p[std::size_t(rng.next_u32() % std::uint32_t(i + 1))]);
-    return p;
-}
-
-// n² multi-jittered points of [0, 1)² (Chiu, Shirley and Wang 1994): one in each of the n × n
-// cells and, along each axis, one in each of the n² fine strata. Point (i, j) lies in cell row i,
-// column j, at fine column j·n + px_j(i) and fine row i·n + py_i(j) for random permutations px
-// per column and py per row. An edge nearly parallel to an axis is then placed to 1/n² of the
-// square, where n × n jittered strata place it to 1/n.
-std::vector<Vec2> multi_jittered(int n, Pcg32& rng) {
-    std::vector<std::vector<int>> px, py;
-    for (int k = 0; k < n; ++k) {
-        px.push_back(shuffled(n, rng));
-        py.push_back(shuffled(n, rng));
-    }
-    const double fine = 1.0 / (double(n) * double(n));
-    std::vector<Vec2> points;
-    points.reserve(std::size_t(n) * std::size_t(n));
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            const auto u = std::size_t(i), v = std::size_t(j);
-            points.push_back({(j * n + px[v][u] + double(rng.next_float())) * fine,
-                              (i * n + py[u][v] + double(rng.next_float())) * fine});
-        }
-    return points;
-}
-
-// Samples per axis for a pixel whose first samples span \p range: about range / tolerance
-// samples, capped; 0 without refinement.
-int refined_strata(double range, const EdgeRefinement& refine) {
-    if (!(refine.tolerance > 0) || !(range > 0))
-        return 0;
-    const double n = std::ceil(std::sqrt(range / refine.tolerance));
-    return int(std::min(n, double(refine.max_samples_per_axis)));
-}
 
 // Averages along(direction) over a pixel's stratified samples. Each pixel draws from its own
 // content-named stream.
@@ -210,15 +169,9 @@ Image render_hits(const EmbreeScene& scene, const Camera& camera, const HitShade
     });
     if (!(refine.tolerance > 0))
         return image;
-    // A rim that only clips a pixel's corner may miss all its first samples but not its
-    // neighbours': each pixel is refined by the largest range around it.
     const Image first = image;
     render_rows(image, ctx, "preview edges", [&](int x, int y) {
-        double around = 0;
-        for (int v = std::max(y - 1, 0); v <= std::min(y + 1, image.height - 1); ++v)
-            for (int u = std::max(x - 1, 0); u <= std::min(x + 1, image.width - 1); ++u)
-                around = std::max(
-                    around, range[std::size_t(v) * std::size_t(image.width) + std::size_t(u)]);
+        const double around = largest_around(range, image.width, image.height, x, y);
         const int n = refined_strata(around, refine);
         if (n <= sampler.strata)
             return first.at(x, y);

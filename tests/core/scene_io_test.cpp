@@ -368,6 +368,24 @@ TEST(SceneIo, IrradianceCacheIsABooleanOrItsSettings) {
     EXPECT_EQ(set->error, 0.3);
 }
 
+// render.light_samples, gather_rays and edge_tolerance (docs/rendering.md "Splitting"): read
+// as given, and out-of-range values are one-line errors naming the key.
+TEST(SceneIo, RenderSamplingSettings) {
+    const std::string dir = test::temp_dir("scene-render-sampling");
+    write_file(dir, "s.json", lamp_scene(R"json(,
+  "render": {"light_samples": 2, "gather_rays": 9, "edge_tolerance": 0})json"));
+    const Scene scene = load_scene(dir + "/s.json");
+    EXPECT_EQ(scene.render.light_samples, 2);
+    EXPECT_EQ(scene.render.gather_rays, 9);
+    EXPECT_EQ(scene.render.edge_tolerance, 0.0);
+    for (const char* bad :
+         {R"("light_samples": 0)", R"("gather_rays": 2000)", R"("edge_tolerance": -1)"}) {
+        write_file(dir, "bad.json", lamp_scene(std::string(",\n  \"render\": {") + bad + "}"));
+        const std::string key = std::string(bad).substr(1, std::string(bad).find('"', 1) - 1);
+        expect_one_line_error(dir + "/bad.json", {"render." + key}, "bad.json");
+    }
+}
+
 TEST(SceneIo, BadSunsNameTheKey) {
     const std::string dir = test::temp_dir("scene-bad-sun");
     struct Case {

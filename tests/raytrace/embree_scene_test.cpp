@@ -2,6 +2,7 @@
 
 #include "raytrace/raytrace.h"
 
+#include "common/pixel_coverage.h"
 #include "common/test_util.h"
 #include "core/error.h"
 
@@ -329,14 +330,6 @@ std::vector<Rgb> vertex_field(const RadiosityMesh& m, const std::function<Rgb(Ve
     return values;
 }
 
-/// World-space extent, on the plane z = 0, of pixel column x (or row, with y flipped).
-std::pair<double, double> footprint(const Camera& c, int pixel, int count, bool vertical) {
-    const double half = std::tan(c.fov_deg * k_pi / 360.0) * std::abs(c.eye.z);
-    const double scale = vertical ? half * c.height / c.width : half;
-    double lo = (2.0 * pixel / count - 1.0) * scale, hi = (2.0 * (pixel + 1) / count - 1.0) * scale;
-    return vertical ? std::pair(-hi, -lo) : std::pair(lo, hi);
-}
-
 TEST(Render, ConstantRadiosityGivesExactlyBOverPi) {
     RadiosityMesh mesh;
     add_square(mesh, -1, 1, 0, true, true);
@@ -352,8 +345,8 @@ TEST(Render, ConstantRadiosityGivesExactlyBOverPi) {
     int inside = 0, outside = 0;
     for (int y = 0; y < image.height; ++y) {
         for (int x = 0; x < image.width; ++x) {
-            auto [x0, x1] = footprint(camera, x, camera.width, false);
-            auto [y0, y1] = footprint(camera, y, camera.height, true);
+            auto [x0, x1] = test::footprint(camera, x, camera.width, false);
+            auto [y0, y1] = test::footprint(camera, y, camera.height, true);
             const Rgb& p = image.at(x, y);
             if (x0 > -1 && x1 < 1 && y0 > -1 && y1 < 1) {
                 EXPECT_EQ(p, expected) << "pixel " << x << "," << y;
@@ -385,8 +378,8 @@ TEST(Render, InterpolatesLinearFieldOnBothSides) {
         Image image = render_solution(scene, solution, camera, test::quiet_context(2));
         for (int y = 8; y < 24; y += 3) {
             for (int x = 8; x < 24; x += 3) {
-                auto [x0, x1] = footprint(camera, x, camera.width, false);
-                auto [y0, y1] = footprint(camera, y, camera.height, true);
+                auto [x0, x1] = test::footprint(camera, x, camera.width, false);
+                auto [y0, y1] = test::footprint(camera, y, camera.height, true);
                 // Looking up from below, the image's x axis is the world's -x axis.
                 double wx = z > 0 ? 0.5 * (x0 + x1) : -0.5 * (x0 + x1);
                 double want = z > 0 ? 2 + wx : 3 + 0.5 * (y0 + y1);
@@ -435,35 +428,6 @@ TEST(Render, BitwiseIdenticalForAnyThreadCount) {
     EXPECT_NE(std::memcmp(a.pixels.data(), c.pixels.data(), a.pixels.size() * sizeof(Rgb)), 0);
 }
 
-/// Area of the axis-aligned box [x0, x1] × [y0, y1] inside the convex polygon \p poly
-/// (counter-clockwise, in the plane z = 0): the box clipped by each edge's half-plane
-/// (Sutherland–Hodgman), then the shoelace formula.
-double area_inside(double x0, double x1, double y0, double y1, const std::vector<Vec3>& poly) {
-    std::vector<Vec2> clip{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-    for (std::size_t e = 0; e < poly.size(); ++e) {
-        const Vec3 &a = poly[e], &b = poly[(e + 1) % poly.size()];
-        const auto side = [&](const Vec2& p) {
-            return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
-        };
-        std::vector<Vec2> out;
-        for (std::size_t i = 0; i < clip.size(); ++i) {
-            const Vec2 &p = clip[i], &q = clip[(i + 1) % clip.size()];
-            const double sp = side(p), sq = side(q);
-            if (sp >= 0)
-                out.push_back(p);
-            if ((sp >= 0) != (sq >= 0))
-                out.push_back(p + (q - p) * (sp / (sp - sq)));
-        }
-        clip = out;
-    }
-    double twice = 0;
-    for (std::size_t i = 0; i < clip.size(); ++i) {
-        const Vec2 &p = clip[i], &q = clip[(i + 1) % clip.size()];
-        twice += p.x * q.y - q.x * p.y;
-    }
-    return 0.5 * std::abs(twice);
-}
-
 // A lamp's rim in a pixel (issue #29's preview): an emitter of radiance 17 turned 3° from the
 // pixel grid, seen straight on; each pixel the rim crosses must read 17 × the exact share of its
 // footprint that the emitter covers. The camera's 16 jittered samples alone place the rim to
@@ -496,9 +460,7 @@ TEST(Render, RefinedEdgePixelsConvergeToTheirExactCoverage) {
     int rim = 0;
     for (int y = 0; y < camera.height; ++y)
         for (int x = 0; x < camera.width; ++x) {
-            const auto [x0, x1] = footprint(camera, x, camera.width, false);
-            const auto [y0, y1] = footprint(camera, y, camera.height, true);
-            const double cover = area_inside(x0, x1, y0, y1, lamp) / ((x1 - x0) * (y1 - y0));
+            const double cover = test::covered_share(camera, x, y, lamp);
             const double want = radiance * cover;
             worst_plain = std::max(worst_plain, std::abs(plain.at(x, y).g - want));
             const double error = refined.at(x, y).g - want;

@@ -26,8 +26,9 @@ enum class RngPurpose : std::uint64_t {
     texel_gather = 14,     ///< directional lightmaps' gather rays (issue #29)
     caustic_photon = 15,   ///< caustic photons of the final gather (issue #28)
     texel_paths = 16,      ///< `penumbra lightmap --gather`: final-gather paths (issue #29)
+    gather_split = 17,     ///< the render's split light and gather samples (issue #28)
     /// The irradiance cache's records (issue #28).
-    irradiance_record = 17,
+    irradiance_record = 18,
 };
 
 /// SplitMix64 finaliser: a strong 64-bit mix.

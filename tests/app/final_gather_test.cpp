@@ -33,21 +33,6 @@ Image render(const app::BakeResult& baked, const Scene& scene, const RenderOptio
     return raytrace::render_final_gather(rt, scene, baked.solution, *scene.camera, options, ctx);
 }
 
-struct Moments {
-    double mean = 0, sd = 0;
-};
-
-Moments channel_moments(const Image& image) {
-    Moments m;
-    for (const Rgb& p : image.pixels)
-        m.mean += p.g;
-    m.mean /= double(image.pixels.size());
-    for (const Rgb& p : image.pixels)
-        m.sd += (p.g - m.mean) * (p.g - m.mean);
-    m.sd = std::sqrt(m.sd / double(image.pixels.size() - 1));
-    return m;
-}
-
 // ---- White furnace: a closed room emitting E (radiosity) with reflectance ρ everywhere ----
 
 Scene furnace(double rho, double exitance) {
@@ -72,7 +57,7 @@ Scene furnace(double rho, double exitance) {
 /// Every pixel reads L = E / (π (1 − ρ)): the image mean within 4 of its standard errors (the
 /// pixels' own scatter, as all share that expectation) and no pixel beyond 6 deviations.
 void expect_furnace(const Image& image, double expected) {
-    const Moments m = channel_moments(image);
+    const test::ImageMoments m = test::green_moments(image);
     const double standard_error = m.sd / std::sqrt(double(image.pixels.size()));
     EXPECT_NEAR(m.mean, expected, 4 * standard_error + 1e-6 * expected)
         << "sd " << m.sd << " over " << image.pixels.size() << " pixels";

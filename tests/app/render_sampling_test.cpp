@@ -13,6 +13,7 @@
 #include "app/pipeline.h"
 #include "common/bake_util.h"
 #include "common/pixel_coverage.h"
+#include "common/reference_tiles.h"
 #include "common/test_util.h"
 #include "core/image.h"
 #include "raytrace/raytrace.h"
@@ -30,21 +31,6 @@ Image render(const app::BakeResult& baked, const Scene& scene, GatherMode mode, 
     options.spp = spp;
     options.gather = mode;
     return raytrace::render_final_gather(rt, scene, baked.solution, *scene.camera, options, ctx);
-}
-
-struct Moments {
-    double mean = 0, sd = 0;
-};
-
-Moments green_moments(const Image& image) {
-    Moments m;
-    for (const Rgb& p : image.pixels)
-        m.mean += p.g;
-    m.mean /= double(image.pixels.size());
-    for (const Rgb& p : image.pixels)
-        m.sd += (p.g - m.mean) * (p.g - m.mean);
-    m.sd = std::sqrt(m.sd / double(image.pixels.size() - 1));
-    return m;
 }
 
 // ---- Splitting in the white furnace: L = E / (π (1 − ρ)) at every pixel ----
@@ -72,9 +58,11 @@ TEST(RenderSplitting, FurnaceStaysExactAndGetsQuieter) {
     const double expected = exitance / (k_pi * (1 - rho));
     for (GatherMode mode : {GatherMode::final_gather, GatherMode::none}) {
         scene.render.light_samples = scene.render.gather_rays = 1;
-        const Moments plain = green_moments(render(baked, scene, mode, 4, test::quiet_context()));
+        const test::ImageMoments plain =
+            test::green_moments(render(baked, scene, mode, 4, test::quiet_context()));
         scene.render.light_samples = scene.render.gather_rays = 4;
-        const Moments split = green_moments(render(baked, scene, mode, 4, test::quiet_context()));
+        const test::ImageMoments split =
+            test::green_moments(render(baked, scene, mode, 4, test::quiet_context()));
         const double se = split.sd / std::sqrt(24.0 * 24.0);
         EXPECT_NEAR(split.mean, expected, 4 * se + 1e-6 * expected) << enum_name(mode);
         EXPECT_LT(split.sd, 0.75 * plain.sd) << enum_name(mode);
@@ -135,26 +123,15 @@ TEST(RenderEdges, RimPixelsConvergeToTheirExactCoverage) {
         const Image one_thread = render(baked, scene, mode, 16, test::quiet_context(1));
         EXPECT_TRUE(
             std::equal(refined.pixels.begin(), refined.pixels.end(), one_thread.pixels.begin()));
-        double worst_plain = 0, worst_refined = 0, squares = 0;
-        int rim = 0;
-        for (int y = 0; y < camera.height; ++y)
-            for (int x = 0; x < camera.width; ++x) {
-                const double cover = test::covered_share(camera, x, y, lamp.vertices);
-                const double want = radiance * cover;
-                worst_plain = std::max(worst_plain, std::abs(plain.at(x, y).g - want));
-                const double error = refined.at(x, y).g - want;
-                worst_refined = std::max(worst_refined, std::abs(error));
-                squares += error * error;
-                rim += cover > 0 && cover < 1;
-            }
-        ASSERT_GT(rim, 30);
-        const double rms = std::sqrt(squares / rim); // pixels off the rim are exact
-        EXPECT_LT(rms, 0.03) << enum_name(mode);
-        EXPECT_LT(worst_refined, 0.08) << enum_name(mode);
-        EXPECT_GT(worst_plain, 0.5) << enum_name(mode);
+        const test::RimErrors e = test::rim_errors(camera, plain, refined, lamp.vertices, radiance);
+        ASSERT_GT(e.pixels, 30);
+        EXPECT_LT(e.rms_refined, 0.03) << enum_name(mode);
+        EXPECT_LT(e.worst_refined, 0.08) << enum_name(mode);
+        EXPECT_GT(e.worst_plain, 0.5) << enum_name(mode);
         std::printf("%s: rim pixels %d: worst error %.4f with 16 samples; refined %.4f, RMS "
                     "%.4f\n",
-                    std::string(enum_name(mode)).c_str(), rim, worst_plain, worst_refined, rms);
+                    std::string(enum_name(mode)).c_str(), e.pixels, e.worst_plain, e.worst_refined,
+                    e.rms_refined);
     }
 }
 

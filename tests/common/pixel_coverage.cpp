@@ -1,5 +1,6 @@
 #include "common/pixel_coverage.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra::test {
@@ -42,6 +43,24 @@ double covered_share(const Camera& c, int x, int y, const std::vector<Vec3>& pol
     const auto [x0, x1] = footprint(c, x, c.width, false);
     const auto [y0, y1] = footprint(c, y, c.height, true);
     return area_inside(x0, x1, y0, y1, poly) / ((x1 - x0) * (y1 - y0));
+}
+
+RimErrors rim_errors(const Camera& c, const Image& plain, const Image& refined,
+                     const std::vector<Vec3>& lamp, double radiance) {
+    RimErrors r;
+    double squares = 0;
+    for (int y = 0; y < c.height; ++y)
+        for (int x = 0; x < c.width; ++x) {
+            const double cover = covered_share(c, x, y, lamp);
+            const double want = radiance * cover;
+            r.worst_plain = std::max(r.worst_plain, std::abs(plain.at(x, y).g - want));
+            const double error = refined.at(x, y).g - want;
+            r.worst_refined = std::max(r.worst_refined, std::abs(error));
+            squares += error * error; // every pixel: those off the rim should be exact
+            r.pixels += cover > 0 && cover < 1;
+        }
+    r.rms_refined = r.pixels > 0 ? std::sqrt(squares / r.pixels) : 0;
+    return r;
 }
 
 } // namespace penumbra::test

@@ -72,4 +72,15 @@ int tiles_off_reference(const std::vector<Image>& renders, const std::string& re
     return off;
 }
 
+ImageMoments green_moments(const Image& image) {
+    ImageMoments m;
+    for (const Rgb& p : image.pixels)
+        m.mean += p.g;
+    m.mean /= double(image.pixels.size());
+    for (const Rgb& p : image.pixels)
+        m.sd += (p.g - m.mean) * (p.g - m.mean);
+    m.sd = std::sqrt(m.sd / double(image.pixels.size() - 1));
+    return m;
+}
+
 } // namespace penumbra::test

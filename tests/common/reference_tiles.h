@@ -38,4 +38,12 @@ std::vector<double> tile_standard_errors(const Image& stderr_image);
 int tiles_off_reference(const std::vector<Image>& renders, const std::string& reference_exr,
                         const std::string& stderr_exr, const std::string& label);
 
+/// \brief Mean and sample standard deviation of a quantity over an image's pixels.
+struct ImageMoments {
+    double mean = 0, sd = 0;
+};
+
+/// \brief The green channel's moments over \p image's pixels (a furnace's noise).
+ImageMoments green_moments(const Image& image);
+
 } // namespace penumbra::test

@@ -456,25 +456,13 @@ TEST(Render, RefinedEdgePixelsConvergeToTheirExactCoverage) {
                           refined.pixels.size() * sizeof(Rgb)),
               0);
 
-    double worst_plain = 0, worst_refined = 0, squares = 0;
-    int rim = 0;
-    for (int y = 0; y < camera.height; ++y)
-        for (int x = 0; x < camera.width; ++x) {
-            const double cover = test::covered_share(camera, x, y, lamp);
-            const double want = radiance * cover;
-            worst_plain = std::max(worst_plain, std::abs(plain.at(x, y).g - want));
-            const double error = refined.at(x, y).g - want;
-            worst_refined = std::max(worst_refined, std::abs(error));
-            squares += error * error;
-            rim += cover > 0 && cover < 1;
-        }
-    ASSERT_GT(rim, 30);
-    const double rms = std::sqrt(squares / rim); // pixels off the rim are exact
-    EXPECT_LT(rms, 0.03);
-    EXPECT_LT(worst_refined, 0.08);
-    EXPECT_GT(worst_plain, 0.5);
-    std::printf("rim pixels %d: worst error %.4f with 16 samples; refined %.4f, RMS %.4f\n", rim,
-                worst_plain, worst_refined, rms);
+    const test::RimErrors e = test::rim_errors(camera, plain, refined, lamp, radiance);
+    ASSERT_GT(e.pixels, 30);
+    EXPECT_LT(e.rms_refined, 0.03);
+    EXPECT_LT(e.worst_refined, 0.08);
+    EXPECT_GT(e.worst_plain, 0.5);
+    std::printf("rim pixels %d: worst error %.4f with 16 samples; refined %.4f, RMS %.4f\n",
+                e.pixels, e.worst_plain, e.worst_refined, e.rms_refined);
 }
 
 TEST(Render, ReportsProgressAndHonoursCancel) {

@@ -43,7 +43,7 @@ SolveResult solve_fixed(const Scene& scene, const RadiosityMesh& mesh,
 // leaf alike left the Cornell box's escaped power 0.3 % of the emitted power apart from seed to
 // seed, its few big, bright ceiling leaves counting most (docs/calibration.md#k_escape_budget).
 std::vector<int> escape_rays_by_power(const ElementGeometry& geo, const Solution& solution) {
-    constexpr double k_escape_budget = double(std::size_t(1) << 22);
+    constexpr double k_escape_budget = double(std::size_t(1) << 20);
     constexpr int k_min_rays = 4, k_max_rays = 4096;
     std::vector<double> power(geo.size(), 0.0);
     double total = 0;

@@ -322,6 +322,25 @@ PairFormFactor triangle_form_factor(const OrientedTriangle& a, const OrientedTri
     return result;
 }
 
+namespace {
+
+// A rows × cols grid of n strata (rows the largest divisor of n up to √n): a point's rays each
+// take one cell of the unit square of the cosine sampling.
+struct StratumGrid {
+    std::size_t rows = 1, cols = 1;
+};
+
+StratumGrid stratum_grid(std::size_t n) {
+    StratumGrid g;
+    for (std::size_t a = 1; a * a <= n; ++a)
+        if (n % a == 0)
+            g.rows = a;
+    g.cols = std::max<std::size_t>(n / g.rows, 1);
+    return g;
+}
+
+} // namespace
+
 double escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibility,
                        std::uint32_t i, const RowSettings& settings) {
     const int rays = geo.emitter[i] ? settings.escape_rays_emitter : settings.escape_rays;
@@ -331,9 +350,18 @@ double escape_fraction(const ElementGeometry& geo, const VisibilityQuery& visibi
     Pcg32 rng = Pcg32::for_stream(RngPurpose::escape_estimate, i, 0, 0, settings.seed);
     auto segments = std::vector<Segment>(std::size_t(rays));
     const float reach = float(4.0 * geo.diagonal + 1.0);
+    // Each point's rays are jittered over a grid of its own on the cosine hemisphere: with 16
+    // rays a leaf, independent directions left the Cornell box's escaped power 0.3 % of the
+    // emitted power apart from seed to seed, more than the balance it is checked against.
+    const std::size_t points = std::size_t(quad.count);
+    const std::size_t per_point = (segments.size() + points - 1) / points;
+    const StratumGrid grid = stratum_grid(per_point);
     for (std::size_t r = 0; r < segments.size(); ++r) {
-        Vec3 from = quad.point[r % quad.count] + geo.normal[i] * geo.offset;
-        Vec3 dir = sample_cosine_hemisphere(geo.normal[i], rng.next_double(), rng.next_double());
+        const Vec3 from = quad.point[r % points] + geo.normal[i] * geo.offset;
+        const std::size_t k = r / points; // the ray's stratum among its point's
+        const double u1 = (double(k / grid.cols) + rng.next_double()) / double(grid.rows);
+        const double u2 = (double(k % grid.cols) + rng.next_double()) / double(grid.cols);
+        const Vec3 dir = sample_cosine_hemisphere(geo.normal[i], u1, u2);
         segments[r] = {Vec3f(from), Vec3f(dir), 0.0f, reach};
     }
     // Through panes of glazing their T(θ) escapes (PowerBalance::escaped).

@@ -69,8 +69,12 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
                 series->add(result.mesh, snapshot, shots);
             };
         }
-        solver::SolveResult solved = solver::solve(scene, result.mesh, *rt, ctx, &result.stats,
-                                                   series ? &observer : nullptr, options.reuse);
+        // Light that reaches diffuse surfaces through specular ones (docs/rendering.md).
+        const std::vector<Rgb> specular = raytrace::caustic_irradiance(
+            raytrace::shoot_caustic_photons(*rt, scene, ctx), result.mesh);
+        solver::SolveResult solved =
+            solver::solve(scene, result.mesh, *rt, ctx, &result.stats, series ? &observer : nullptr,
+                          options.reuse, specular);
         result.solution = std::move(solved.solution);
         if (options.keep_state)
             result.solver_state = std::move(solved.state);

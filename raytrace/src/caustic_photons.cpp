@@ -231,7 +231,8 @@ std::optional<CausticPhoton> trace_photon(const EmbreeScene& rt, const SurfaceGe
         if (receives_photons(material)) {
             if (bounces == 0 || hit.element < 0)
                 return std::nullopt;
-            return CausticPhoton{s.p, -photon.dir, s.normal, photon.power};
+            return CausticPhoton{s.p, -photon.dir, s.normal, photon.power,
+                                 std::uint32_t(hit.element)};
         }
         if (!material.lobe)
             return std::nullopt;
@@ -294,6 +295,20 @@ CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene,
         scene.render.caustic_radius_m.value_or(k_max_radius_of_diagonal * rt.mesh().scene_diagonal);
     ctx.debug("caustic photons: {} stored of {} shot, radius {:.4g} m", out.photons.size(),
               out.shot, out.radius_m);
+    return out;
+}
+
+std::vector<Rgb> caustic_irradiance(const CausticPhotons& photons, const RadiosityMesh& mesh) {
+    if (photons.photons.empty())
+        return {};
+    std::vector<RgbD> flux(mesh.element_count());
+    for (const CausticPhoton& photon : photons.photons)
+        flux[photon.element] += RgbD(photon.power_w);
+    std::vector<Rgb> out(flux.size());
+    for (std::size_t e = 0; e < flux.size(); ++e) {
+        const RgbD h = flux[e] * (1.0 / mesh.element_area[e]);
+        out[e] = Rgb(float(h.r), float(h.g), float(h.b));
+    }
     return out;
 }
 

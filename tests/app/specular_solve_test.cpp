@@ -1,8 +1,10 @@
 // Light that reaches a diffuse surface through a specular one is in the radiosity solution
 // (issue #28): a point light between a diffuse floor and a mirror above it. The floor's
-// indirect irradiance is then the mirror image source's alone, R I cos θ / d² (the floor
-// sees nothing else the solver does not treat as black), whose mean over the floor is
-// R I Ω / A with Ω the floor's solid angle from the image.
+// indirect irradiance is then the mirror image source's, R I cos θ / d² (the floor sees
+// nothing else the solver does not treat as black), whose mean over the floor is R I Ω / A
+// with Ω the floor's solid angle from the image; the floor reflects 1 %, so that the light it
+// sends itself through the mirror (D S D, about 0.8 × 0.01 × 24 W/m² × a view factor of 0.07
+// to its image 2 m away: 0.4 % of the image's) stays well inside the tolerance.
 
 #include <cmath>
 #include <vector>
@@ -21,7 +23,7 @@ constexpr double k_intensity_w_sr = 10, k_mirror_reflectance = 0.8;
 
 Scene point_light_under_mirror() {
     Scene scene;
-    const auto floor = test::add_material(scene, "floor", Rgb(0.5f), {}, false);
+    const auto floor = test::add_material(scene, "floor", Rgb(0.01f), {}, false);
     Material mirror;
     mirror.name = "mirror";
     mirror.reflectance = Rgb(0.0f);

@@ -152,6 +152,12 @@ struct CausticPhotons {
 ///        on or caustic_photons is 0. Bitwise identical for any thread count.
 CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene, const Context& ctx);
 
+/// \brief shoot_caustic_photons() with the elements of \p rt's mesh as the only sources, each
+///        of \p exitance (one per element, W/m²): the light that leaves diffuse surfaces and
+///        reaches others through specular ones (D S+ D paths; issue #28).
+CausticPhotons shoot_reflected_photons(const EmbreeScene& rt, const Scene& scene,
+                                       std::span<const Rgb> exitance, const Context& ctx);
+
 /// \brief The irradiance (W/m²) the caustic photons of \p photons bring each element of
 ///        \p mesh (the mesh they were shot on): Σ Φ / A over the photons that landed on it,
 ///        summed in the photons' order (bitwise the same for any thread count). Empty when

@@ -13,12 +13,14 @@
 #include "path_geometry.h"
 
 #include "core/bsdf.h"
+#include "core/error.h"
 #include "core/parallel.h"
 #include "core/rng.h"
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
 #include <variant>
 
 namespace penumbra::raytrace {
@@ -74,11 +76,19 @@ struct Emission {
 class PhotonSources {
 public:
     /// \p offset: how far off an emitting element its photons start (not to meet it).
+    /// \p exitance: empty for the scene's sources, else the elements alone, each a source
+    /// of this exitance (W/m²) instead of its emission.
     PhotonSources(const RadiosityMesh& mesh, const Scene& scene, const Target& target,
-                  double offset)
-        : mesh_(mesh), scene_(scene), target_(target), lights_(mesh), offset_(offset) {
+                  double offset, std::span<const Rgb> exitance)
+        : mesh_(mesh), scene_(scene), target_(target), lights_(mesh, exitance), offset_(offset),
+          exitance_(exitance) {
         if (!lights_.empty())
             add(AreaKind{}, lights_.power());
+        if (!exitance.empty()) {
+            for (double& c : cdf_)
+                c /= total_;
+            return;
+        }
         for (std::uint32_t i = 0; i < scene.point_lights.size(); ++i) {
             const RgbD power = scene.point_lights[i].power();
             add(PointKind{i}, (power.r + power.g + power.b) / 3.0);
@@ -161,8 +171,8 @@ private:
         // Φ = L cos A / (p_element pdf_dir), L = M / π.
         const double scale =
             cos_light * k_inv_pi * mesh_.element_area[element] / lights_.probability(element);
-        return Emission{point + patch.normal * offset_, dir,
-                        patch.emission * float(scale * inv_pdf)};
+        const Rgb m = exitance_.empty() ? patch.emission : exitance_[element];
+        return Emission{point + patch.normal * offset_, dir, m * float(scale * inv_pdf)};
     }
 
     std::optional<Emission> emit(PointKind kind, Pcg32& rng) const {
@@ -211,6 +221,7 @@ private:
     Target target_;
     AreaLights lights_;
     double offset_ = 0;
+    std::span<const Rgb> exitance_;
     std::vector<SourceKind> kinds_;
     std::vector<double> cdf_;
     double total_ = 0;
@@ -231,7 +242,8 @@ std::optional<CausticPhoton> trace_photon(const EmbreeScene& rt, const SurfaceGe
         if (receives_photons(material)) {
             if (bounces == 0 || hit.element < 0)
                 return std::nullopt;
-            return CausticPhoton{s.p, -photon.dir, s.normal, photon.power};
+            return CausticPhoton{s.p, -photon.dir, s.normal, photon.power,
+                                 std::uint32_t(hit.element)};
         }
         if (!material.lobe)
             return std::nullopt;
@@ -256,17 +268,16 @@ std::optional<CausticPhoton> trace_photon(const EmbreeScene& rt, const SurfaceGe
     return std::nullopt;
 }
 
-} // namespace
-
-CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene,
-                                     const Context& ctx) {
+/// The photons of the scene's sources (\p exitance empty) or of the elements' \p exitance.
+CausticPhotons shoot_photons(const EmbreeScene& rt, const Scene& scene,
+                             std::span<const Rgb> exitance, const Context& ctx) {
     CausticPhotons out;
     const auto wanted = std::uint64_t(std::max(0, scene.render.caustic_photons));
     const auto target = specular_target(rt.mesh(), scene);
     if (wanted == 0 || !target)
         return out;
     const SurfaceGeometry surfaces(rt, scene);
-    const PhotonSources sources(rt.mesh(), scene, *target, surfaces.offset_distance());
+    const PhotonSources sources(rt.mesh(), scene, *target, surfaces.offset_distance(), exitance);
     if (sources.empty())
         return out;
     std::vector<std::optional<CausticPhoton>> batch(k_batch);
@@ -292,8 +303,37 @@ CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene,
     out.fixed_radius = scene.render.caustic_radius_m.has_value();
     out.radius_m =
         scene.render.caustic_radius_m.value_or(k_max_radius_of_diagonal * rt.mesh().scene_diagonal);
-    ctx.debug("caustic photons: {} stored of {} shot, radius {:.4g} m", out.photons.size(),
-              out.shot, out.radius_m);
+    ctx.debug("{} photons: {} stored of {} shot, radius {:.4g} m",
+              exitance.empty() ? "caustic" : "reflected", out.photons.size(), out.shot,
+              out.radius_m);
+    return out;
+}
+
+} // namespace
+
+CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene,
+                                     const Context& ctx) {
+    return shoot_photons(rt, scene, {}, ctx);
+}
+
+CausticPhotons shoot_reflected_photons(const EmbreeScene& rt, const Scene& scene,
+                                       std::span<const Rgb> exitance, const Context& ctx) {
+    if (exitance.size() != rt.mesh().element_count())
+        throw InternalError("shoot_reflected_photons: one exitance per element expected");
+    return shoot_photons(rt, scene, exitance, ctx);
+}
+
+std::vector<Rgb> caustic_irradiance(const CausticPhotons& photons, const RadiosityMesh& mesh) {
+    if (photons.photons.empty())
+        return {};
+    std::vector<RgbD> flux(mesh.element_count());
+    for (const CausticPhoton& photon : photons.photons)
+        flux[photon.element] += RgbD(photon.power_w);
+    std::vector<Rgb> out(flux.size());
+    for (std::size_t e = 0; e < flux.size(); ++e) {
+        const RgbD h = flux[e] * (1.0 / mesh.element_area[e]);
+        out[e] = Rgb(float(h.r), float(h.g), float(h.b));
+    }
     return out;
 }
 

@@ -63,10 +63,14 @@ Vec3 uniform_sphere(double u1, double u2) {
     return uniform_cone(-1.0, u1, u2);
 }
 
-AreaLights::AreaLights(const RadiosityMesh& mesh) : probability_(mesh.element_count(), 0.0) {
+AreaLights::AreaLights(const RadiosityMesh& mesh) : AreaLights(mesh, std::span<const Rgb>{}) {}
+
+AreaLights::AreaLights(const RadiosityMesh& mesh, std::span<const Rgb> exitance)
+    : probability_(mesh.element_count(), 0.0) {
     double total = 0;
     for (std::uint32_t e = 0; e < mesh.element_count(); ++e) {
-        const double power = channel_mean(mesh.patch_of(e).emission) * mesh.element_area[e];
+        const Rgb m = exitance.empty() ? mesh.patch_of(e).emission : exitance[e];
+        const double power = channel_mean(m) * mesh.element_area[e];
         if (power > 0) {
             elements_.push_back(e);
             total += power;

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 namespace penumbra::raytrace {
@@ -37,6 +38,9 @@ inline float channel_mean(const Rgb& c) {
 class AreaLights {
 public:
     explicit AreaLights(const RadiosityMesh& mesh);
+    /// The elements as sources of exitance \p exitance (one per element, W/m²) instead of
+    /// their emission.
+    AreaLights(const RadiosityMesh& mesh, std::span<const Rgb> exitance);
 
     bool empty() const { return elements_.empty(); }
     /// The element of \p u ∈ [0, 1).

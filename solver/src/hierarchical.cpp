@@ -303,7 +303,7 @@ SolveResult output_stage(HierarchicalSystem& sys, const Scene& scene, const Radi
         stats->power = hierarchical_balance(
             scene, out_mesh, geo, result.solution, visibility, sys.settings.rows,
             stats->residual_history.empty() ? 0.0 : stats->residual_history.back(),
-            sys.distant_power());
+            sys.distant_power() + sys.specular_power());
         ctx.debug("hierarchical: power balance {:.2f} s", seconds_since(t0));
     }
     // The last pass is the solution itself where it lives on the roots.
@@ -322,13 +322,13 @@ SolveResult output_stage(HierarchicalSystem& sys, const Scene& scene, const Radi
 SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
                                const VisibilityQuery& visibility, const Context& ctx,
                                SolveStats* stats, const SolveObserver* observer,
-                               const HierarchicalState* reuse) {
+                               const HierarchicalState* reuse, std::span<const Rgb> specular) {
     if (reuse)
         check_reusable(mesh, *reuse);
     ProgressStage progress(ctx, "hierarchical");
     SweepLog log{mesh, observer, stats};
     const std::unique_ptr<HierarchicalSystem> system =
-        build_hierarchical(scene, mesh, visibility, ctx, progress, log, reuse);
+        build_hierarchical(scene, mesh, visibility, ctx, progress, log, reuse, specular);
     return output_stage(*system, scene, mesh, visibility, ctx, stats, observer, log);
 }
 

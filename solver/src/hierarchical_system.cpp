@@ -274,11 +274,24 @@ HierarchicalSystem::HierarchicalSystem(const Scene& scene, const RadiosityMesh& 
     values.b_range.assign(h.size(), 0.0f);
 }
 
+RgbD HierarchicalSystem::specular_power() const {
+    RgbD total;
+    for (std::size_t r = 0; r < values.specular.size(); ++r)
+        total += RgbD(values.specular[r]) * h.area[r];
+    return total;
+}
+
 std::unique_ptr<HierarchicalSystem>
 build_hierarchical(const Scene& scene, const RadiosityMesh& mesh, const VisibilityQuery& visibility,
                    const Context& ctx, ProgressStage& progress, SweepLog& log,
-                   const HierarchicalState* reuse) {
+                   const HierarchicalState* reuse, std::span<const Rgb> specular) {
     auto sys = std::make_unique<HierarchicalSystem>(scene, mesh, ctx, reuse);
+    if (!specular.empty()) {
+        if (specular.size() != sys->h.root_count)
+            throw InternalError("build_hierarchical: one specular irradiance per element expected");
+        sys->values.specular.assign(specular.begin(), specular.end());
+        sys->emitted += sys->specular_power().max_component(); // a source like the sun
+    }
     make_clusters(*sys, scene, ctx, reuse);
     // Lives as long as refinement: the system keeps the links and the cluster tables.
     LinkSet refiner(sys->h, sys->links, sys->clusters.tables.get(), visibility, scene.point_lights,

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/context.h"
@@ -50,6 +51,8 @@ struct HierarchicalSystem {
 
     /// What the sun's and the sky's links deliver (W per channel): their power in the balance.
     RgbD distant_power() const { return links.distant_power(h); }
+    /// What the roots' specular light (NodeValues::specular) delivers, W per channel.
+    RgbD specular_power() const;
 };
 
 /// \brief Throws ConfigError unless \p state was saved by a solve of \p mesh's geometry.
@@ -64,11 +67,13 @@ struct SourceTerms {
 /// \brief Builds the system for the scene's sources: links the roots (or takes \p reuse's
 ///        saved links, re-running the oracle on them), then refines and solves in turn
 ///        until refinement settles. The system's values are then the scene's solution.
-///        \p progress moves over the cycles; sweeps are reported to \p log.
+///        \p progress moves over the cycles; sweeps are reported to \p log. \p specular:
+///        per element of \p mesh (or empty), light that reaches it through specular
+///        surfaces, W/m² (NodeValues::specular).
 std::unique_ptr<HierarchicalSystem>
 build_hierarchical(const Scene& scene, const RadiosityMesh& mesh, const VisibilityQuery& visibility,
                    const Context& ctx, ProgressStage& progress, SweepLog& log,
-                   const HierarchicalState* reuse);
+                   const HierarchicalState* reuse, std::span<const Rgb> specular = {});
 
 /// \brief The source terms \p system is solved for now (after a build: the scene's).
 SourceTerms current_sources(const HierarchicalSystem& system);

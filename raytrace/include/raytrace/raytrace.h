@@ -131,6 +131,7 @@ struct CausticPhoton {
     Vec3 incoming; ///< unit, from the surface toward where the photon came from
     Vec3 normal;   ///< geometric normal of the side it landed on
     Rgb power_w;   ///< the flux it carries, W per channel (already divided by the photons shot)
+    std::uint32_t element = 0; ///< the mesh element it landed on (the side it faces)
 };
 
 /// \brief The caustic photon map's photons and its density estimate's radius.
@@ -150,6 +151,18 @@ struct CausticPhotons {
 ///        else the 64 nearest photons' (docs/rendering.md). Empty when no surface passes light
 ///        on or caustic_photons is 0. Bitwise identical for any thread count.
 CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene, const Context& ctx);
+
+/// \brief shoot_caustic_photons() with the elements of \p rt's mesh as the only sources, each
+///        of \p exitance (one per element, W/m²): the light that leaves diffuse surfaces and
+///        reaches others through specular ones (D S+ D paths; issue #28).
+CausticPhotons shoot_reflected_photons(const EmbreeScene& rt, const Scene& scene,
+                                       std::span<const Rgb> exitance, const Context& ctx);
+
+/// \brief The irradiance (W/m²) the caustic photons of \p photons bring each element of
+///        \p mesh (the mesh they were shot on): Σ Φ / A over the photons that landed on it,
+///        summed in the photons' order (bitwise the same for any thread count). Empty when
+///        there are no photons. The solver's specular_irradiance (issue #28).
+std::vector<Rgb> caustic_irradiance(const CausticPhotons& photons, const RadiosityMesh& mesh);
 
 /// \brief Renders the camera view of \p scene (the scene the mesh of \p rt was built from):
 ///        direct light from every source with multiple importance sampling, glossy, mirror and

@@ -28,13 +28,15 @@ void size_values(const Hierarchy& h, NodeValues& v) {
     v.b_range.resize(n);
 }
 
-// Light links and cluster links to element receivers (into extra_*), and the clusters'
-// irradiance pushed down to the roots, from the current radiosities.
+// Light links and cluster links to element receivers (into extra_*), the roots' specular
+// light, and the clusters' irradiance pushed down to the roots, from the current radiosities.
 void gather_extra(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters) {
     v.extra_direct.assign(h.size(), Rgb{});
     v.extra_indirect.assign(h.size(), Rgb{});
     for (const LightLink& l : links.light_links()) // few; serial keeps the order fixed
         v.extra_direct[l.receiver] += l.irradiance;
+    for (std::size_t r = 0; r < v.specular.size(); ++r)
+        v.extra_indirect[r] += v.specular[r];
     if (clusters.enabled) {
         gather_cluster_links(h, *clusters.tables, links, v.b, clusters.values, v.extra_direct,
                              v.extra_indirect);

@@ -33,6 +33,9 @@ struct NodeValues {
     std::vector<Rgb> link_direct, link_indirect;
     /// Irradiance of light links and cluster links to element receivers, spread evenly.
     std::vector<Rgb> extra_direct, extra_indirect;
+    /// Per root (empty: none), W/m²: light that reaches it through specular surfaces (the
+    /// caustic photons), a fixed source added to extra_indirect every sweep (issue #28).
+    std::vector<Rgb> specular;
     /// What each node sends through its element links: its leaves' radiosities by their emit
     /// weights (the leaf's own radiosity for a leaf).
     std::vector<Rgb> b_emit;

@@ -1,0 +1,85 @@
+// Light that reaches a diffuse surface through a specular one is in the radiosity solution
+// (issue #28): a point light between a diffuse floor and a mirror above it. The floor's
+// indirect irradiance is then the mirror image source's, R I cos θ / d² (the floor sees
+// nothing else the solver does not treat as black), whose mean over the floor is R I Ω / A
+// with Ω the floor's solid angle from the image; the floor reflects 1 %, so that the light it
+// sends itself through the mirror (D S D, about 0.8 × 0.01 × 24 W/m² × a view factor of 0.07
+// to its image 2 m away: 0.4 % of the image's) stays well inside the tolerance.
+
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "common/bake_util.h"
+#include "common/test_util.h"
+#include "core/scene.h"
+
+namespace penumbra {
+namespace {
+
+constexpr double k_light_height = 0.5, k_mirror_height = 1.0, k_floor_side = 1.0;
+constexpr double k_intensity_w_sr = 10, k_mirror_reflectance = 0.8;
+
+Scene point_light_under_mirror() {
+    Scene scene;
+    const auto floor = test::add_material(scene, "floor", Rgb(0.01f), {}, false);
+    Material mirror;
+    mirror.name = "mirror";
+    mirror.reflectance = Rgb(0.0f);
+    mirror.two_sided = false;
+    mirror.lobe = Mirror{Rgb(float(k_mirror_reflectance))};
+    scene.materials.push_back(mirror);
+    const double h = k_floor_side / 2;
+    test::add_rect(scene, "floor", floor, {-h, -h, 0}, {k_floor_side, 0, 0}, {0, k_floor_side, 0});
+    // Three times the floor's side, facing down: every floor point sees the image through it.
+    test::add_rect(scene, "mirror", std::uint32_t(scene.materials.size() - 1),
+                   {-3 * h, -3 * h, k_mirror_height}, {0, 3 * k_floor_side, 0},
+                   {3 * k_floor_side, 0, 0});
+    PointLight light;
+    light.name = "lamp";
+    light.position = {0, 0, k_light_height};
+    light.intensity = Rgb(float(k_intensity_w_sr));
+    scene.point_lights.push_back(light);
+    scene.render.caustic_photons = 20000;
+    return scene;
+}
+
+/// Σ H_indirect A / Σ A over the floor's elements, channel mean.
+double floor_mean_indirect(const app::BakeResult& baked) {
+    double flux = 0, area = 0;
+    for (std::uint32_t e = 0; e < baked.mesh.element_count(); ++e) {
+        if (baked.mesh.patch_of(e).material != 0)
+            continue;
+        const double a = baked.mesh.element_area[e];
+        const Rgb h = baked.solution.irradiance_indirect[e];
+        flux += (double(h.r) + h.g + h.b) / 3 * a;
+        area += a;
+    }
+    return flux / area;
+}
+
+TEST(SpecularSolve, FloorIrradianceIsTheMirrorImageSource) {
+    const app::BakeResult baked = test::bake(point_light_under_mirror());
+    // A square of side a seen from height d above its centre: Ω = 4 asin(a² / (a² + 4d²)).
+    const double d = 2 * k_mirror_height - k_light_height, a = k_floor_side;
+    const double omega = 4 * std::asin(a * a / (a * a + 4 * d * d));
+    const double expected = k_mirror_reflectance * k_intensity_w_sr * omega / (a * a);
+    // 20000 photons of equal power land on the floor: 1/√20000 = 0.7 % of noise.
+    EXPECT_NEAR(floor_mean_indirect(baked), expected, 0.03 * expected);
+}
+
+TEST(SpecularSolve, SolutionDoesNotDependOnTheThreadCount) {
+    const Scene scene = point_light_under_mirror();
+    const app::BakeResult one = test::bake(scene, 1), two = test::bake(scene, 2);
+    ASSERT_EQ(one.solution.vertex_radiosity.size(), two.solution.vertex_radiosity.size());
+    for (std::size_t v = 0; v < one.solution.vertex_radiosity.size(); ++v) {
+        EXPECT_EQ(one.solution.vertex_radiosity[v].r, two.solution.vertex_radiosity[v].r);
+        EXPECT_EQ(one.solution.vertex_radiosity[v].g, two.solution.vertex_radiosity[v].g);
+        EXPECT_EQ(one.solution.vertex_radiosity[v].b, two.solution.vertex_radiosity[v].b);
+    }
+    EXPECT_GT(floor_mean_indirect(one), 0.0);
+}
+
+} // namespace
+} // namespace penumbra

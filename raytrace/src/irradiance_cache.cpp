@@ -244,6 +244,19 @@ void add_gradients(const RecordRays& rays, const Frame& frame, IrradianceRecord&
     }
 }
 
+/// Where the least reach (k_min_reach_px) overrides R ≤ E / |∇E|, the gradient is scaled down
+/// to |∇E| R = E instead: a noisy gradient (one ray per cell, divided by short distances by a
+/// corner) would extrapolate below zero within reach, and clamping that at zero biased the
+/// furnace 1 % bright at 256 rays (the bias grows as the rays' noise).
+void limit_translation_gradients(IrradianceRecord& r) {
+    for (std::size_t c = 0; c < 3; ++c) {
+        Vec3& g = r.translation_gradient[c];
+        const double reach = length(g) * r.radius_m;
+        if (reach > double(r.irradiance[c]))
+            g = g * (double(r.irradiance[c]) / reach);
+    }
+}
+
 /// The record at \p s: irradiance, gradients, and R from the harmonic mean distance, clamped
 /// to [k_min_reach_px, k_max_reach_px] footprints of \p footprint_m (reach a·R) and to
 /// E / |∇E| (Křivánek et al. 2008: no further than the gradient would take E to zero).
@@ -273,6 +286,7 @@ IrradianceRecord compute_record(const SurfaceHit& s, double footprint_m, double 
             radius = std::min(radius, double(r.irradiance[c]) / slope);
     }
     r.radius_m = std::clamp(radius, lo, hi);
+    limit_translation_gradients(r);
     return r;
 }
 

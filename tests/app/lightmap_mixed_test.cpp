@@ -231,10 +231,12 @@ TEST(LightmapMixed, SceneKeyReadsEveryLightsModeAndRefusesAnUnknownOne) {
 }
 
 // ---- Re-bake: radiosity is linear in emission, so the re-solve of the Cornell box's stored
-// links with its lamp twice as bright gives twice the lightmaps, and the full bake of the
-// changed scene the same. Both solves stop at a residual of 10⁻⁶ of the emitted power; the
-// re-solve re-runs the refinement oracle, which scales with the radiosities (ε is relative to
-// the brightest exitance) and so refines nothing new: 10⁻⁴ of the brightest texel. ----
+// links with its lamp twice as bright gives twice the lightmaps of their re-solve with the lamp
+// as it was: the refinement oracle scales with the radiosities (ε is relative to the brightest
+// exitance), so both refine the same links. Both solves stop at a residual of 10⁻⁶ of the
+// emitted power: 10⁻⁴ of the brightest texel. The full bake of the changed scene stops
+// refining once a cycle adds under 0.5 % to its links (k_settled_growth), where the re-solve
+// runs one more refinement (9 links here, 0.05 % of the brightest texel): 10⁻³. ----
 
 Scene with_brighter_lamp(Scene scene, float factor) {
     for (Material& m : scene.materials)
@@ -275,15 +277,20 @@ TEST(LightmapRebake, DoubledLampReusingTheLinksEqualsTheFullBake) {
 
     app::BakeOptions reuse = app::lightmap_bake_options();
     reuse.reuse = first.solver_state.get();
-    app::LightmapResult rebaked = app::plan_lightmaps(doubled, options, ctx);
-    app::fill_lightmaps(doubled, app::bake(doubled, reuse, ctx), rebaked, ctx);
+    auto rebake = [&](const Scene& changed) {
+        app::LightmapResult r = app::plan_lightmaps(changed, options, ctx);
+        app::fill_lightmaps(changed, app::bake(changed, reuse, ctx), r, ctx);
+        return r;
+    };
+    const app::LightmapResult same = rebake(scene), rebaked = rebake(doubled);
     const app::LightmapResult full = app::bake_lightmaps(doubled, options, ctx);
 
     const float top = brightest(full.atlases);
     ASSERT_GT(top, 0.0f);
     ASSERT_EQ(rebaked.atlases.size(), full.atlases.size());
-    EXPECT_LT(largest_difference(rebaked.atlases, 1.0f, full.atlases), 1e-4f * top);
-    EXPECT_LT(largest_difference(original.atlases, 2.0f, rebaked.atlases), 1e-4f * top);
+    EXPECT_LT(largest_difference(same.atlases, 2.0f, rebaked.atlases), 1e-4f * top);
+    EXPECT_LT(largest_difference(rebaked.atlases, 1.0f, full.atlases), 1e-3f * top);
+    EXPECT_LT(largest_difference(original.atlases, 2.0f, rebaked.atlases), 1e-3f * top);
 }
 
 // ---- `--gather`: the furnace (every wall emits E, reflectance ρ) receives E / (1 − ρ)

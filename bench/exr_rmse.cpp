@@ -5,8 +5,12 @@
 // a left-out pixel, 8-neighbourhood) and over the rest; --error OUT.exr writes the per-pixel
 // difference IMAGE − REFERENCE (left-out pixels 0) and --worst N lists the N pixels of largest
 // squared difference, to see where the error is.
+// --noise STDERR.exr (the reference's per-pixel standard error, |a − b| / 2 of its two halves)
+// adds the RMSE against the converged image: the mean square difference less the reference's
+// own noise variance (the mean of STDERR², an unbiased estimate of it), over the same pixels.
 //
 //   exr_rmse IMAGE.exr REFERENCE.exr [LIGHT_LUMINANCE] [--split] [--error OUT.exr] [--worst N]
+//            [--noise STDERR.exr]
 //   (radiance units, W/(sr·m²))
 
 #include <algorithm>
@@ -15,6 +19,7 @@
 #include <exception>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,7 +32,7 @@ namespace {
 using namespace penumbra;
 
 struct Options {
-    std::string image, reference, error;
+    std::string image, reference, error, noise;
     double light = std::numeric_limits<double>::infinity();
     bool split = false;
     std::size_t worst = 0;
@@ -42,6 +47,8 @@ Options parse(int argc, char** argv) {
             o.split = true;
         else if (a == "--error" && i + 1 < argc)
             o.error = argv[++i];
+        else if (a == "--noise" && i + 1 < argc)
+            o.noise = argv[++i];
         else if (a == "--worst" && i + 1 < argc)
             o.worst = std::stoul(argv[++i]);
         else
@@ -49,7 +56,7 @@ Options parse(int argc, char** argv) {
     }
     if (positional.size() < 2 || positional.size() > 3)
         throw std::invalid_argument("usage: exr_rmse IMAGE.exr REFERENCE.exr [LIGHT_LUMINANCE] "
-                                    "[--split] [--error OUT.exr] [--worst N]");
+                                    "[--split] [--error OUT.exr] [--worst N] [--noise STDERR.exr]");
     o.image = positional[0];
     o.reference = positional[1];
     if (positional.size() == 3)
@@ -80,17 +87,23 @@ std::vector<int> classify(const Image& ref, double light) {
 struct Sum {
     double squares = 0;
     std::size_t count = 0;
+    double noise = 0; ///< Σ of the reference's squared standard errors (--noise)
     double rmse() const { return count ? std::sqrt(squares / double(count)) : 0.0; }
+    /// Against the converged image: the reference's noise variance taken out.
+    double converged_rmse() const {
+        return count ? std::sqrt(std::max(0.0, squares - noise) / double(count)) : 0.0;
+    }
 };
+
+double squares_of(const Rgb& d) {
+    return double(d.r) * d.r + double(d.g) * d.g + double(d.b) * d.b;
+}
 
 // The \p n pixels of largest squared difference: position, image and reference values.
 void print_worst(const Image& image, const Image& ref, const Image& error, std::size_t n) {
     std::vector<std::size_t> order(error.pixels.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
-    const auto squares = [&](std::size_t i) {
-        const Rgb& d = error.pixels[i];
-        return double(d.r) * d.r + double(d.g) * d.g + double(d.b) * d.b;
-    };
+    const auto squares = [&](std::size_t i) { return squares_of(error.pixels[i]); };
     n = std::min(n, order.size());
     std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(n), order.end(),
                       [&](std::size_t a, std::size_t b) { return squares(a) > squares(b); });
@@ -114,6 +127,13 @@ int main(int argc, char** argv) {
                          ref.width, ref.height);
             return 2;
         }
+        const std::optional<Image> noise =
+            o.noise.empty() ? std::nullopt : std::optional<Image>(read_exr(o.noise));
+        if (noise && (noise->width != ref.width || noise->height != ref.height)) {
+            std::fprintf(stderr, "exr_rmse: --noise %s is not of the reference's size\n",
+                         o.noise.c_str());
+            return 2;
+        }
         const std::vector<int> kind = classify(ref, o.light);
         Sum all, edge, rest;
         Image error(ref.width, ref.height);
@@ -121,10 +141,11 @@ int main(int argc, char** argv) {
             if (kind[i] == 2)
                 continue;
             const Rgb d = image.pixels[i] - ref.pixels[i];
-            const double s = double(d.r) * d.r + double(d.g) * d.g + double(d.b) * d.b;
+            const double s = squares_of(d), n = noise ? squares_of(noise->pixels[i]) : 0.0;
             Sum& part = kind[i] == 1 ? edge : rest;
             for (Sum* sum : {&all, &part}) {
                 sum->squares += s;
+                sum->noise += n;
                 sum->count += 3;
             }
             error.pixels[i] = d;
@@ -134,6 +155,10 @@ int main(int argc, char** argv) {
                         edge.count / 3, edge.rmse(), rest.rmse());
         else
             std::printf("%.6f\n", all.rmse());
+        if (noise)
+            std::printf("converged %.6f (edge %.6f; rest %.6f; the reference's noise %.6f)\n",
+                        all.converged_rmse(), edge.converged_rmse(), rest.converged_rmse(),
+                        std::sqrt(all.noise / double(std::max<std::size_t>(all.count, 1))));
         if (!o.error.empty())
             write_exr(o.error, error);
         print_worst(image, ref, error, o.worst);

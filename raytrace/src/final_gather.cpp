@@ -27,6 +27,7 @@
 
 #include "core/bsdf.h"
 #include "core/error.h"
+#include "core/memory.h"
 #include "core/parallel.h"
 #include "core/rng.h"
 
@@ -567,6 +568,9 @@ struct FirstSamples {
     RgbD seen, rest;
     Rgb seen_low, seen_high;
 };
+static_assert(
+    sizeof(FirstSamples) + sizeof(Rgb) <= k_render_bytes_per_pixel,
+    "the render's memory estimate (core/memory.h) counts the first samples and the image");
 
 /// The largest channel range of the seen part over the samples of pixel (x, y) and its eight
 /// neighbours together (rows of \p width): an edge between two pixels shows even at one sample

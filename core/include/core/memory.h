@@ -54,10 +54,12 @@ inline constexpr std::size_t k_mesh_bytes_per_element = [] {
 /// the mesh).
 inline constexpr std::size_t k_triangulation_bytes_per_element = 64;
 
-/// Bytes per pixel of a render: the image, its per-pixel sample sums and the written
-/// file's copy (EXR halves, PNG bytes), counted as three images.
+/// Bytes per pixel of a render: the final gather's first samples of every pixel, kept for
+/// edge refinement (two RGB sums in double and the seen part's least and greatest RGB:
+/// raytrace's FirstSamples, which asserts it), the image, and the written file's copy (EXR
+/// halves, PNG bytes) counted as one more image.
 inline constexpr std::size_t k_render_bytes_per_pixel =
-    3 * memory_detail::item<decltype(Image::pixels)>;
+    2 * sizeof(RgbD) + 2 * sizeof(Rgb) + 2 * memory_detail::item<decltype(Image::pixels)>;
 
 /// \brief Physical memory, or the cgroup's limit where lower (cgroup v2 memory.max, v1
 ///        memory.limit_in_bytes, of this process's cgroup or the namespace's root).

@@ -35,10 +35,11 @@ private:
 
 /// Light that reaches diffuse surfaces through specular ones (docs/rendering.md): the
 /// solve with \p specular, the light of the sources (L S+ D), then once more from its state
-/// with the light its diffuse surfaces pass on through specular ones (D S+ D) added.
+/// with the transfers between diffuse surfaces through specular ones (D S+ D), traced with
+/// the first solve's exitance as their importance; that solve carries them to convergence.
 solver::SolveResult solve_with_specular_light(const Scene& scene, const RadiosityMesh& mesh,
                                               const raytrace::EmbreeScene& rt,
-                                              std::vector<Rgb> specular,
+                                              SpecularLight specular,
                                               const solver::SolveObserver* series,
                                               const solver::HierarchicalState* reuse,
                                               solver::SolveStats& stats, const Context& ctx) {
@@ -58,17 +59,14 @@ solver::SolveResult solve_with_specular_light(const Scene& scene, const Radiosit
         }
     };
     solver::SolveResult first =
-        solver::solve(scene, mesh, rt, ctx, &stats, &observer, reuse, specular);
+        solver::solve(scene, mesh, rt, ctx, &stats, &observer, reuse, &specular);
     if (!first.state || exitance.empty())
         return first;
-    const std::vector<Rgb> passed = raytrace::caustic_irradiance(
-        raytrace::shoot_reflected_photons(rt, scene, exitance, ctx), mesh);
-    if (passed.empty())
+    specular.transfers = raytrace::specular_transfers(rt, scene, exitance, ctx);
+    if (specular.transfers.empty())
         return first;
-    for (std::size_t e = 0; e < specular.size(); ++e)
-        specular[e] += passed[e];
     stats = solver::SolveStats{};
-    return solver::solve(scene, mesh, rt, ctx, &stats, series, first.state.get(), specular);
+    return solver::solve(scene, mesh, rt, ctx, &stats, series, first.state.get(), &specular);
 }
 
 } // namespace
@@ -108,8 +106,9 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
             };
         }
         // Light that reaches diffuse surfaces through specular ones (docs/rendering.md).
-        std::vector<Rgb> specular = raytrace::caustic_irradiance(
-            raytrace::shoot_caustic_photons(*rt, scene, ctx), result.mesh);
+        SpecularLight specular{raytrace::caustic_irradiance(
+                                   raytrace::shoot_caustic_photons(*rt, scene, ctx), result.mesh),
+                               {}};
         solver::SolveResult solved =
             specular.empty()
                 ? solver::solve(scene, result.mesh, *rt, ctx, &result.stats,

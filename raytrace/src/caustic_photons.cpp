@@ -65,10 +65,12 @@ struct SunKind {};
 struct SkyKind {};
 using SourceKind = std::variant<AreaKind, PointKind, SunKind, SkyKind>;
 
-/// A photon leaving its source: where, which way, and its flux per shot photon, W.
+/// A photon leaving its source: where, which way, and its flux per shot photon, W (per unit
+/// of the element's exitance, m², for the elements as sources of their reflected light).
 struct Emission {
     Vec3 origin, dir;
     Rgb power;
+    std::uint32_t element = 0; ///< the emitting element it left, if it left one
 };
 
 /// The sources, chosen in proportion to their power (toward the target for the sun and the
@@ -76,8 +78,8 @@ struct Emission {
 class PhotonSources {
 public:
     /// \p offset: how far off an emitting element its photons start (not to meet it).
-    /// \p exitance: empty for the scene's sources, else the elements alone, each a source
-    /// of this exitance (W/m²) instead of its emission.
+    /// \p exitance: empty for the scene's sources, else the elements alone, chosen by this
+    /// exitance (W/m²), each photon carrying its power per unit of exitance.
     PhotonSources(const RadiosityMesh& mesh, const Scene& scene, const Target& target,
                   double offset, std::span<const Rgb> exitance)
         : mesh_(mesh), scene_(scene), target_(target), lights_(mesh, exitance), offset_(offset),
@@ -171,8 +173,8 @@ private:
         // Φ = L cos A / (p_element pdf_dir), L = M / π.
         const double scale =
             cos_light * k_inv_pi * mesh_.element_area[element] / lights_.probability(element);
-        const Rgb m = exitance_.empty() ? patch.emission : exitance_[element];
-        return Emission{point + patch.normal * offset_, dir, m * float(scale * inv_pdf)};
+        const Rgb m = exitance_.empty() ? patch.emission : Rgb(1.0f);
+        return Emission{point + patch.normal * offset_, dir, m * float(scale * inv_pdf), element};
     }
 
     std::optional<Emission> emit(PointKind kind, Pcg32& rng) const {
@@ -268,19 +270,28 @@ std::optional<CausticPhoton> trace_photon(const EmbreeScene& rt, const SurfaceGe
     return std::nullopt;
 }
 
-/// The photons of the scene's sources (\p exitance empty) or of the elements' \p exitance.
-CausticPhotons shoot_photons(const EmbreeScene& rt, const Scene& scene,
-                             std::span<const Rgb> exitance, const Context& ctx) {
+/// Stored photons and, for each, the element it left (0 for the other sources).
+struct StoredPhotons {
     CausticPhotons out;
+    std::vector<std::uint32_t> sources;
+};
+
+/// The photons of the scene's sources (\p exitance empty) or of the elements chosen by their
+/// \p exitance (powers per unit of exitance).
+StoredPhotons shoot_photons(const EmbreeScene& rt, const Scene& scene,
+                            std::span<const Rgb> exitance, const Context& ctx) {
+    StoredPhotons stored;
+    CausticPhotons& out = stored.out;
     const auto wanted = std::uint64_t(std::max(0, scene.render.caustic_photons));
     const auto target = specular_target(rt.mesh(), scene);
     if (wanted == 0 || !target)
-        return out;
+        return stored;
     const SurfaceGeometry surfaces(rt, scene);
     const PhotonSources sources(rt.mesh(), scene, *target, surfaces.offset_distance(), exitance);
     if (sources.empty())
-        return out;
+        return stored;
     std::vector<std::optional<CausticPhoton>> batch(k_batch);
+    std::vector<std::uint32_t> batch_sources(k_batch);
     run_in_arena(ctx, [&] {
         while (out.photons.size() < wanted && out.shot < k_max_shot_per_stored * wanted) {
             const std::uint64_t first = out.shot;
@@ -291,10 +302,13 @@ CausticPhotons shoot_photons(const EmbreeScene& rt, const Scene& scene,
                 batch[i] =
                     emission ? trace_photon(rt, surfaces, *emission, scene.render.max_bounces, rng)
                              : std::nullopt;
+                batch_sources[i] = emission ? emission->element : 0;
             });
-            for (const auto& photon : batch)
-                if (photon)
-                    out.photons.push_back(*photon);
+            for (std::size_t i = 0; i < k_batch; ++i)
+                if (batch[i]) {
+                    out.photons.push_back(*batch[i]);
+                    stored.sources.push_back(batch_sources[i]);
+                }
             out.shot += k_batch;
         }
     });
@@ -306,21 +320,29 @@ CausticPhotons shoot_photons(const EmbreeScene& rt, const Scene& scene,
     ctx.debug("{} photons: {} stored of {} shot, radius {:.4g} m",
               exitance.empty() ? "caustic" : "reflected", out.photons.size(), out.shot,
               out.radius_m);
-    return out;
+    return stored;
 }
 
 } // namespace
 
 CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene,
                                      const Context& ctx) {
-    return shoot_photons(rt, scene, {}, ctx);
+    return shoot_photons(rt, scene, {}, ctx).out;
 }
 
-CausticPhotons shoot_reflected_photons(const EmbreeScene& rt, const Scene& scene,
-                                       std::span<const Rgb> exitance, const Context& ctx) {
+std::vector<SpecularLight::Transfer> specular_transfers(const EmbreeScene& rt, const Scene& scene,
+                                                        std::span<const Rgb> exitance,
+                                                        const Context& ctx) {
     if (exitance.size() != rt.mesh().element_count())
-        throw InternalError("shoot_reflected_photons: one exitance per element expected");
-    return shoot_photons(rt, scene, exitance, ctx);
+        throw InternalError("specular_transfers: one exitance per element expected");
+    const StoredPhotons stored = shoot_photons(rt, scene, exitance, ctx);
+    std::vector<SpecularLight::Transfer> transfers;
+    transfers.reserve(stored.out.photons.size());
+    for (std::size_t i = 0; i < stored.out.photons.size(); ++i) {
+        const CausticPhoton& photon = stored.out.photons[i];
+        transfers.push_back({stored.sources[i], photon.element, photon.power_w});
+    }
+    return transfers;
 }
 
 std::vector<Rgb> caustic_irradiance(const CausticPhotons& photons, const RadiosityMesh& mesh) {

@@ -322,7 +322,7 @@ SolveResult output_stage(HierarchicalSystem& sys, const Scene& scene, const Radi
 SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
                                const VisibilityQuery& visibility, const Context& ctx,
                                SolveStats* stats, const SolveObserver* observer,
-                               const HierarchicalState* reuse, std::span<const Rgb> specular) {
+                               const HierarchicalState* reuse, const SpecularLight* specular) {
     if (reuse)
         check_reusable(mesh, *reuse);
     ProgressStage progress(ctx, "hierarchical");

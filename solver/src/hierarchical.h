@@ -21,10 +21,10 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
                                   double unconverged_fraction, const RgbD& distant_delivered);
 
 /// \brief Hierarchical radiosity on the mesh's elements as roots; returns the leaf mesh and
-///        its solution. \p specular: solve()'s specular_irradiance.
+///        its solution. \p specular: solve()'s (null: none).
 SolveResult solve_hierarchical(const Scene& scene, const RadiosityMesh& mesh,
                                const VisibilityQuery& visibility, const Context& ctx,
                                SolveStats* stats, const SolveObserver* observer,
-                               const HierarchicalState* reuse, std::span<const Rgb> specular);
+                               const HierarchicalState* reuse, const SpecularLight* specular);
 
 } // namespace penumbra::solver

@@ -298,6 +298,23 @@ void settle_reflected_weights(HierarchicalSystem& sys, const Scene& scene, const
              k_max_weight_rounds);
 }
 
+// The sources' specular light as a fixed source (its power in the emitted total, as the sun's
+// is) and the transfers between roots for the sweeps to apply (NodeValues::specular).
+void take_specular_light(HierarchicalSystem& sys, const SpecularLight& specular) {
+    const std::size_t roots = sys.h.root_count;
+    if (!specular.irradiance.empty() && specular.irradiance.size() != roots)
+        throw InternalError("build_hierarchical: one specular irradiance per element expected");
+    for (const SpecularLight::Transfer& t : specular.transfers)
+        if (t.from >= roots || t.to >= roots)
+            throw InternalError("build_hierarchical: a specular transfer names no element");
+    NodeValues& v = sys.values;
+    v.specular_fixed = specular.irradiance;
+    v.specular_fixed.resize(roots);
+    v.specular = v.specular_fixed;
+    v.specular_transfers = specular.transfers;
+    sys.emitted += sys.specular_power().max_component();
+}
+
 } // namespace
 
 void check_reusable(const RadiosityMesh& mesh, const HierarchicalState& state) {
@@ -326,14 +343,10 @@ RgbD HierarchicalSystem::specular_power() const {
 std::unique_ptr<HierarchicalSystem>
 build_hierarchical(const Scene& scene, const RadiosityMesh& mesh, const VisibilityQuery& visibility,
                    const Context& ctx, ProgressStage& progress, SweepLog& log,
-                   const HierarchicalState* reuse, std::span<const Rgb> specular) {
+                   const HierarchicalState* reuse, const SpecularLight* specular) {
     auto sys = std::make_unique<HierarchicalSystem>(scene, mesh, ctx, reuse);
-    if (!specular.empty()) {
-        if (specular.size() != sys->h.root_count)
-            throw InternalError("build_hierarchical: one specular irradiance per element expected");
-        sys->values.specular.assign(specular.begin(), specular.end());
-        sys->emitted += sys->specular_power().max_component(); // a source like the sun
-    }
+    if (specular && !specular->empty())
+        take_specular_light(*sys, *specular);
     make_clusters(*sys, scene, ctx, reuse);
     // Lives as long as refinement: the system keeps the links and the cluster tables.
     LinkSet refiner(sys->h, sys->links, sys->clusters.tables.get(), visibility, scene.point_lights,

@@ -67,13 +67,13 @@ struct SourceTerms {
 /// \brief Builds the system for the scene's sources: links the roots (or takes \p reuse's
 ///        saved links, re-running the oracle on them), then refines and solves in turn
 ///        until refinement settles. The system's values are then the scene's solution.
-///        \p progress moves over the cycles; sweeps are reported to \p log. \p specular:
-///        per element of \p mesh (or empty), light that reaches it through specular
-///        surfaces, W/m² (NodeValues::specular).
+///        \p progress moves over the cycles; sweeps are reported to \p log. \p specular
+///        (or null): light that reaches the elements of \p mesh through specular surfaces
+///        (NodeValues::specular).
 std::unique_ptr<HierarchicalSystem>
 build_hierarchical(const Scene& scene, const RadiosityMesh& mesh, const VisibilityQuery& visibility,
                    const Context& ctx, ProgressStage& progress, SweepLog& log,
-                   const HierarchicalState* reuse, std::span<const Rgb> specular = {});
+                   const HierarchicalState* reuse, const SpecularLight* specular = nullptr);
 
 /// \brief The source terms \p system is solved for now (after a build: the scene's).
 SourceTerms current_sources(const HierarchicalSystem& system);

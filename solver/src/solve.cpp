@@ -96,12 +96,12 @@ PowerBalance hierarchical_balance(const Scene& scene, const RadiosityMesh& mesh,
 
 SolveResult solve(const Scene& scene, const RadiosityMesh& mesh, const VisibilityQuery& visibility,
                   const Context& ctx, SolveStats* stats, const SolveObserver* observer,
-                  const HierarchicalState* reuse, std::span<const Rgb> specular_irradiance) {
+                  const HierarchicalState* reuse, const SpecularLight* specular) {
     switch (scene.solver.method) {
     case SolverMethod::hierarchical:
         return run_in_arena(ctx, [&] {
             return solve_hierarchical(scene, mesh, visibility, ctx, stats, observer, reuse,
-                                      specular_irradiance);
+                                      specular);
         });
     case SolverMethod::shooting:
     case SolverMethod::jacobi:
@@ -113,7 +113,7 @@ SolveResult solve(const Scene& scene, const RadiosityMesh& mesh, const Visibilit
         throw ConfigError(fmt::format("a saved solver state is reused by the hierarchical "
                                       "method only, not '{}'",
                                       enum_name(scene.solver.method)));
-    if (!specular_irradiance.empty())
+    if (specular && !specular->empty())
         ctx.warn("solver.method '{}' leaves the light that reaches diffuse surfaces through "
                  "specular ones out of the solution (the hierarchical method has it)",
                  enum_name(scene.solver.method));

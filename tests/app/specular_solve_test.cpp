@@ -7,6 +7,7 @@
 // to its image 2 m away: 0.4 % of the image's) stays well inside the tolerance.
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -67,6 +68,51 @@ TEST(SpecularSolve, FloorIrradianceIsTheMirrorImageSource) {
     const double expected = k_mirror_reflectance * k_intensity_w_sr * omega / (a * a);
     // 20000 photons of equal power land on the floor: 1/√20000 = 0.7 % of noise.
     EXPECT_NEAR(floor_mean_indirect(baked), expected, 0.03 * expected);
+}
+
+// A diffuse floor that emits E and reflects ρ, under a mirror ceiling of reflectance R, in
+// walls of perfect mirrors: unfolded, an infinite floor under an infinite mirror, so that all
+// the light leaving the floor comes back to it after one bounce off the ceiling. Its
+// irradiance is then uniform and H = R (E + ρ H) = R E / (1 − ρ R): light that crosses the
+// mirror any number of times (L S D, then D S D, D S D S D, ...). The sources' photons alone
+// give R E (−40 % here), one D S D pass R E (1 + ρ R) (−16 %).
+constexpr double k_floor_exitance_w_m2 = 1.0, k_floor_reflectance = 0.5;
+
+Scene emitting_floor_in_mirrors() {
+    Scene scene;
+    const auto floor = test::add_material(scene, "floor", Rgb(float(k_floor_reflectance)),
+                                          Rgb(float(k_floor_exitance_w_m2 / k_pi)), false);
+    const auto mirror = [&](const std::string& name, float r) {
+        Material m;
+        m.name = name;
+        m.reflectance = Rgb(0.0f);
+        m.two_sided = false;
+        m.lobe = Mirror{Rgb(r)};
+        scene.materials.push_back(m);
+        return std::uint32_t(scene.materials.size() - 1);
+    };
+    const auto ceiling = mirror("ceiling", float(k_mirror_reflectance));
+    const auto wall = mirror("wall", 1.0f);
+    // Four times as wide as high: a photon meets the walls about tan θ / 2 times on its way
+    // there and back, so that max_bounces (16) loses only those beyond 88° (0.1 %).
+    const double a = 2.0, h = 0.5;
+    test::add_rect(scene, "floor", floor, {0, 0, 0}, {a, 0, 0}, {0, a, 0});
+    test::add_rect(scene, "ceiling", ceiling, {0, 0, h}, {0, a, 0}, {a, 0, 0});
+    test::add_rect(scene, "wall_x0", wall, {0, 0, 0}, {0, a, 0}, {0, 0, h});
+    test::add_rect(scene, "wall_x1", wall, {a, 0, 0}, {0, 0, h}, {0, a, 0});
+    test::add_rect(scene, "wall_y0", wall, {0, 0, 0}, {0, 0, h}, {a, 0, 0});
+    test::add_rect(scene, "wall_y1", wall, {0, a, 0}, {a, 0, 0}, {0, 0, h});
+    scene.mesher.max_edge_length = 0.5;
+    scene.render.caustic_photons = 20000;
+    return scene;
+}
+
+TEST(SpecularSolve, LightCrossingMirrorsAnyNumberOfTimesConverges) {
+    const app::BakeResult baked = test::bake(emitting_floor_in_mirrors());
+    const double rho_r = k_floor_reflectance * k_mirror_reflectance;
+    const double expected = k_mirror_reflectance * k_floor_exitance_w_m2 / (1 - rho_r);
+    // 20000 photons land on the floor in each of the two sets: under 1 % of noise.
+    EXPECT_NEAR(floor_mean_indirect(baked), expected, 0.02 * expected);
 }
 
 TEST(SpecularSolve, SolutionDoesNotDependOnTheThreadCount) {

@@ -92,6 +92,26 @@ struct Solution {
     std::vector<Rgb> vertex_irradiance_indirect;
 };
 
+/// \brief Light that reaches diffuse elements through surfaces without a diffuse part (mirror,
+///        glass, metal: issue #28), for the radiosity solver, on the elements of the mesh it
+///        was traced on.
+struct SpecularLight {
+    /// \brief A share of the light element \p from reflects that reaches element \p to
+    ///        through specular surfaces alone: \p from's reflected exitance M (W/m²) delivers
+    ///        M × \p area_m2 watts to \p to (per channel).
+    struct Transfer {
+        std::uint32_t from = 0, to = 0;
+        Rgb area_m2;
+    };
+    /// Per element (or empty), W/m²: the sources' light (L S+ D), a fixed source.
+    std::vector<Rgb> irradiance;
+    /// Diffuse to diffuse (D S+ D), linear in the solution's exitance, so that the solve
+    /// carries it through any number of such passes.
+    std::vector<Transfer> transfers;
+
+    bool empty() const { return irradiance.empty() && transfers.empty(); }
+};
+
 /// \brief Irradiance at a sensor point, computed at the point itself.
 struct SensorReading {
     Rgb irradiance_direct; ///< W/m²

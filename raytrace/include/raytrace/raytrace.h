@@ -152,16 +152,20 @@ struct CausticPhotons {
 ///        on or caustic_photons is 0. Bitwise identical for any thread count.
 CausticPhotons shoot_caustic_photons(const EmbreeScene& rt, const Scene& scene, const Context& ctx);
 
-/// \brief shoot_caustic_photons() with the elements of \p rt's mesh as the only sources, each
-///        of \p exitance (one per element, W/m²): the light that leaves diffuse surfaces and
-///        reaches others through specular ones (D S+ D paths; issue #28).
-CausticPhotons shoot_reflected_photons(const EmbreeScene& rt, const Scene& scene,
-                                       std::span<const Rgb> exitance, const Context& ctx);
+/// \brief The light that leaves diffuse elements and reaches others through specular surfaces
+///        (D S+ D paths; issue #28), as the solver's SpecularLight::transfers: photons shot as
+///        by shoot_caustic_photons() with the elements of \p rt's mesh as the only sources,
+///        chosen in proportion to \p exitance (one per element, W/m²: the likely solution's
+///        reflected exitance), each one transfer of its power per unit of its element's
+///        exitance, in the photons' order. An element of zero exitance is never chosen.
+std::vector<SpecularLight::Transfer> specular_transfers(const EmbreeScene& rt, const Scene& scene,
+                                                        std::span<const Rgb> exitance,
+                                                        const Context& ctx);
 
 /// \brief The irradiance (W/m²) the caustic photons of \p photons bring each element of
 ///        \p mesh (the mesh they were shot on): Σ Φ / A over the photons that landed on it,
 ///        summed in the photons' order (bitwise the same for any thread count). Empty when
-///        there are no photons. The solver's specular_irradiance (issue #28).
+///        there are no photons. SpecularLight::irradiance (issue #28).
 std::vector<Rgb> caustic_irradiance(const CausticPhotons& photons, const RadiosityMesh& mesh);
 
 /// \brief Renders the camera view of \p scene (the scene the mesh of \p rt was built from):

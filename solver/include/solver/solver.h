@@ -89,18 +89,20 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
 /// \brief Solves with scene.solver.method (SolverMethod). Hierarchical: with \p reuse, keeps
 ///        its hierarchy and links, takes reflectances and emissions from \p scene, re-runs
 ///        the refinement oracle and iterates from its radiosities.
-///        \p specular_irradiance (empty, or one per element of \p mesh, W/m²): light that
-///        reaches each element through specular surfaces (caustic photons, issue #28), a fixed
-///        source whose reflection ρ H the solve spreads like any light; it is in the
-///        elements' indirect irradiance, not in their emission, and the balance books it as
-///        emitted (delivered) power. The hierarchical method only: the others warn and leave
-///        it out.
+///        \p specular (null or empty: none; per element of \p mesh): light that reaches
+///        elements through specular surfaces (caustic photons, issue #28): the sources' part
+///        a fixed source whose reflection ρ H the solve spreads like any light, the transfers
+///        between diffuse elements applied to the radiosities of every sweep, so that light
+///        crossing specular surfaces any number of times converges with the rest. It is in
+///        the elements' indirect irradiance, not in their emission, and the balance books it
+///        as emitted (delivered) power. The hierarchical method only: the others warn and
+///        leave it out.
 /// \throws ConfigError for a scene too large for SolverMethod::matrix, or a \p reuse
 ///         state of another geometry or with another method.
 SolveResult solve(const Scene& scene, const RadiosityMesh& mesh, const VisibilityQuery& visibility,
                   const Context& ctx, SolveStats* stats = nullptr,
                   const SolveObserver* observer = nullptr, const HierarchicalState* reuse = nullptr,
-                  std::span<const Rgb> specular_irradiance = {});
+                  const SpecularLight* specular = nullptr);
 
 /// \brief Solves the radiosity of \p mesh by progressive shooting until the unshot power falls
 ///        below SolverSettings::residual of the emitted power.

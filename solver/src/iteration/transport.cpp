@@ -28,6 +28,21 @@ void size_values(const Hierarchy& h, NodeValues& v) {
     v.b_range.resize(n);
 }
 
+// The roots' specular light: the fixed part and what the roots' reflected exitance of the
+// last sweep passes on through the transfers (a lag of one sweep, as transmitted light).
+void transfer_specular(const Hierarchy& h, NodeValues& v) {
+    std::vector<RgbD> power(h.root_count);
+    for (const SpecularLight::Transfer& t : v.specular_transfers) { // serial: a fixed order
+        const Rgb m = v.b[t.from] - h.emission[t.from];
+        const Rgb reflected{std::max(0.0f, m.r), std::max(0.0f, m.g), std::max(0.0f, m.b)};
+        power[t.to] += RgbD(reflected * t.area_m2);
+    }
+    for (std::size_t r = 0; r < h.root_count; ++r) {
+        const RgbD e = power[r] * (1.0 / h.area[r]);
+        v.specular[r] = v.specular_fixed[r] + Rgb{float(e.r), float(e.g), float(e.b)};
+    }
+}
+
 // Light links and cluster links to element receivers (into extra_*), the roots' specular
 // light, and the clusters' irradiance pushed down to the roots, from the current radiosities.
 void gather_extra(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters) {
@@ -35,6 +50,8 @@ void gather_extra(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clu
     v.extra_indirect.assign(h.size(), Rgb{});
     for (const LightLink& l : links.light_links()) // few; serial keeps the order fixed
         v.extra_direct[l.receiver] += l.irradiance;
+    if (!v.specular_transfers.empty())
+        transfer_specular(h, v);
     for (std::size_t r = 0; r < v.specular.size(); ++r)
         v.extra_indirect[r] += v.specular[r];
     if (clusters.enabled) {
@@ -302,11 +319,15 @@ Solution root_snapshot(const RadiosityMesh& mesh, const Hierarchy& h, const Node
 Solved solve_links(const Hierarchy& h, const LinkStore& links, NodeValues& v, Clusters& clusters,
                    const SolverSettings& settings, Iteration iteration, double emitted,
                    SweepLog& log) {
-    if (iteration == Iteration::shooting)
-        return shoot_links(h, links, v, clusters, settings, emitted, log);
-    const TreeNodes trees = iteration == Iteration::gauss_seidel ? tree_nodes(h) : TreeNodes{};
     Solved s;
-    while (s.sweeps < settings.max_sweeps && s.relative > settings.residual) {
+    if (iteration == Iteration::shooting) {
+        s = shoot_links(h, links, v, clusters, settings, emitted, log);
+        if (v.specular_transfers.empty())
+            return s;
+        iteration = Iteration::jacobi; // shots carry nothing through the specular transfers
+    }
+    const TreeNodes trees = iteration == Iteration::gauss_seidel ? tree_nodes(h) : TreeNodes{};
+    for (int sweeps = 0; sweeps < settings.max_sweeps && s.relative > settings.residual; ++sweeps) {
         s.relative = iteration == Iteration::gauss_seidel
                          ? sweep_gauss_seidel(h, links, v, clusters, trees, emitted)
                          : sweep_jacobi(h, links, v, clusters, emitted);

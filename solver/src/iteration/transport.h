@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -33,9 +34,11 @@ struct NodeValues {
     std::vector<Rgb> link_direct, link_indirect;
     /// Irradiance of light links and cluster links to element receivers, spread evenly.
     std::vector<Rgb> extra_direct, extra_indirect;
-    /// Per root (empty: none), W/m²: light that reaches it through specular surfaces (the
-    /// caustic photons), a fixed source added to extra_indirect every sweep (issue #28).
-    std::vector<Rgb> specular;
+    /// Per root (empty: none), W/m²: light that reaches it through specular surfaces (issue
+    /// #28), added to extra_indirect every sweep: the sources' part (specular_fixed) and
+    /// what the roots' reflected light of the last sweep passes on (specular_transfers).
+    std::vector<Rgb> specular, specular_fixed;
+    std::span<const SpecularLight::Transfer> specular_transfers;
     /// What each node sends through its element links: its leaves' radiosities by their emit
     /// weights (the leaf's own radiosity for a leaf).
     std::vector<Rgb> b_emit;

@@ -107,13 +107,22 @@ Scene emitting_floor_in_mirrors() {
     return scene;
 }
 
-TEST(SpecularSolve, LightCrossingMirrorsAnyNumberOfTimesConverges) {
-    const app::BakeResult baked = test::bake(emitting_floor_in_mirrors());
+class SpecularSolveIterations : public ::testing::TestWithParam<SolverIteration> {};
+
+// Every iteration carries the transfers to convergence (shooting ends with sweeps for them).
+TEST_P(SpecularSolveIterations, LightCrossingMirrorsAnyNumberOfTimesConverges) {
+    Scene scene = emitting_floor_in_mirrors();
+    scene.solver.iteration = GetParam();
+    const app::BakeResult baked = test::bake(scene);
     const double rho_r = k_floor_reflectance * k_mirror_reflectance;
     const double expected = k_mirror_reflectance * k_floor_exitance_w_m2 / (1 - rho_r);
     // 20000 photons land on the floor in each of the two sets: under 1 % of noise.
     EXPECT_NEAR(floor_mean_indirect(baked), expected, 0.02 * expected);
 }
+
+INSTANTIATE_TEST_SUITE_P(SpecularSolve, SpecularSolveIterations,
+                         ::testing::Values(SolverIteration::jacobi, SolverIteration::shooting),
+                         [](const auto& info) { return std::string(enum_name(info.param)); });
 
 TEST(SpecularSolve, SolutionDoesNotDependOnTheThreadCount) {
     const Scene scene = point_light_under_mirror();

@@ -324,7 +324,9 @@ Solved solve_links(const Hierarchy& h, const LinkStore& links, NodeValues& v, Cl
         s = shoot_links(h, links, v, clusters, settings, emitted, log);
         if (v.specular_transfers.empty())
             return s;
-        iteration = Iteration::jacobi; // shots carry nothing through the specular transfers
+        // Shots carry nothing through the specular transfers: sweep until they settle too.
+        iteration = Iteration::jacobi;
+        s.relative = 1;
     }
     const TreeNodes trees = iteration == Iteration::gauss_seidel ? tree_nodes(h) : TreeNodes{};
     for (int sweeps = 0; sweeps < settings.max_sweeps && s.relative > settings.residual; ++sweeps) {

@@ -50,15 +50,9 @@ void add_sphere(Scene& scene, std::uint32_t material, const Vec3& centre, double
 Scene sun_through_glass_sphere() {
     Scene scene;
     const auto floor = test::add_material(scene, "floor", Rgb(0.5f), {}, false);
-    Material glass;
-    glass.name = "glass";
-    glass.reflectance = Rgb(0.0f);
-    glass.two_sided = false;
-    glass.lobe = Dielectric{k_ior, true, Rgb(1.0f)};
-    scene.materials.push_back(glass);
+    const auto glass = test::add_lobe_material(scene, "glass", Dielectric{k_ior, true, Rgb(1.0f)});
     test::add_rect(scene, "floor", floor, {-4, -4, 0}, {8, 0, 0}, {0, 8, 0});
-    add_sphere(scene, std::uint32_t(scene.materials.size() - 1), {0, 0, k_centre_height}, k_radius,
-               96, 48);
+    add_sphere(scene, glass, {0, 0, k_centre_height}, k_radius, 96, 48);
     Sun sun;
     sun.direction = {0, 0, 1};
     sun.irradiance = Rgb(float(k_sun_w_m2));

@@ -25,18 +25,13 @@ constexpr double k_intensity_w_sr = 10, k_mirror_reflectance = 0.8;
 Scene point_light_under_mirror() {
     Scene scene;
     const auto floor = test::add_material(scene, "floor", Rgb(0.01f), {}, false);
-    Material mirror;
-    mirror.name = "mirror";
-    mirror.reflectance = Rgb(0.0f);
-    mirror.two_sided = false;
-    mirror.lobe = Mirror{Rgb(float(k_mirror_reflectance))};
-    scene.materials.push_back(mirror);
+    const auto mirror =
+        test::add_lobe_material(scene, "mirror", Mirror{Rgb(float(k_mirror_reflectance))});
     const double h = k_floor_side / 2;
     test::add_rect(scene, "floor", floor, {-h, -h, 0}, {k_floor_side, 0, 0}, {0, k_floor_side, 0});
     // Three times the floor's side, facing down: every floor point sees the image through it.
-    test::add_rect(scene, "mirror", std::uint32_t(scene.materials.size() - 1),
-                   {-3 * h, -3 * h, k_mirror_height}, {0, 3 * k_floor_side, 0},
-                   {3 * k_floor_side, 0, 0});
+    test::add_rect(scene, "mirror", mirror, {-3 * h, -3 * h, k_mirror_height},
+                   {0, 3 * k_floor_side, 0}, {3 * k_floor_side, 0, 0});
     PointLight light;
     light.name = "lamp";
     light.position = {0, 0, k_light_height};
@@ -83,13 +78,7 @@ Scene emitting_floor_in_mirrors() {
     const auto floor = test::add_material(scene, "floor", Rgb(float(k_floor_reflectance)),
                                           Rgb(float(k_floor_exitance_w_m2 / k_pi)), false);
     const auto mirror = [&](const std::string& name, float r) {
-        Material m;
-        m.name = name;
-        m.reflectance = Rgb(0.0f);
-        m.two_sided = false;
-        m.lobe = Mirror{Rgb(r)};
-        scene.materials.push_back(m);
-        return std::uint32_t(scene.materials.size() - 1);
+        return test::add_lobe_material(scene, name, Mirror{Rgb(r)});
     };
     const auto ceiling = mirror("ceiling", float(k_mirror_reflectance));
     const auto wall = mirror("wall", 1.0f);

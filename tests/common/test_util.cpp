@@ -172,6 +172,12 @@ std::uint32_t add_material(Scene& scene, const std::string& name, Rgb reflectanc
     return std::uint32_t(scene.materials.size() - 1);
 }
 
+std::uint32_t add_lobe_material(Scene& scene, const std::string& name, const Lobe& lobe) {
+    const std::uint32_t index = add_material(scene, name, Rgb(0.0f), {}, false);
+    scene.materials[index].lobe = lobe;
+    return index;
+}
+
 void add_rect(Scene& scene, const std::string& name, std::uint32_t material, const Vec3& origin,
               const Vec3& u, const Vec3& v) {
     Polygon p;

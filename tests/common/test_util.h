@@ -74,6 +74,8 @@ std::string external_error_with_file_limit(std::uint64_t max_bytes,
 /// Adds a material; returns its index.
 std::uint32_t add_material(Scene& scene, const std::string& name, Rgb reflectance,
                            Rgb emission = {}, bool two_sided = true);
+/// Adds a one-sided material of \p lobe alone (its diffuse part black); returns its index.
+std::uint32_t add_lobe_material(Scene& scene, const std::string& name, const Lobe& lobe);
 
 /// Adds the parallelogram origin, origin + u, origin + u + v, origin + v; its front faces
 /// along u × v.

@@ -332,6 +332,7 @@ int run_render(const RenderFlags& flags, const CommonFlags& common) {
     options.reuse = previous.get();
     options.render_options = render;
     options.keep_state = false;
+    options.solve = render.gather != raytrace::GatherMode::none;
     app::BakeResult result = app::bake(scene, options, ctx);
     app::write_render_outputs(flags.scene.output, scene, result);
     const double seconds = result.times.empty() ? 0.0 : result.times.back().seconds;
@@ -494,7 +495,7 @@ int main(int argc, char** argv) {
     render_cmd
         ->add_option("--gather", render.gather,
                      "final: read the radiosity one diffuse bounce away (default); none: a pure "
-                     "path tracer; radiosity: the solution's interpolated view")
+                     "path tracer (no solve); radiosity: the solution's interpolated view")
         ->check(CLI::IsMember(enum_names<raytrace::GatherMode>()));
     render_cmd
         ->add_option("--gather-depth", render.gather_depth,

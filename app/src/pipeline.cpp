@@ -94,7 +94,7 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
         StageTimer t(result.times, "bvh");
         rt.emplace(result.mesh);
     }
-    {
+    if (options.solve) {
         StageTimer t(result.times, "solve");
         std::optional<viewer::SeriesWriter> series;
         solver::SolveObserver observer;
@@ -136,7 +136,7 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
             result.series_steps = series->step_count();
         }
     }
-    if (!scene.sensors.empty()) {
+    if (options.solve && !scene.sensors.empty()) {
         StageTimer t(result.times, "sensors");
         result.sensors = solver::evaluate_sensors(scene, result.mesh, result.solution, *rt, ctx);
     }

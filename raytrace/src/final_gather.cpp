@@ -572,21 +572,17 @@ static_assert(
     sizeof(FirstSamples) + sizeof(Rgb) <= k_render_bytes_per_pixel,
     "the render's memory estimate (core/memory.h) counts the first samples and the image");
 
-/// The largest channel range of the seen part over the samples of the eight neighbours of
-/// pixel (x, y) together (rows of \p width; 0 without neighbours): an edge between two pixels
-/// shows even at one sample each, and a rim that only clips a pixel's corner may miss its
-/// samples but not theirs. The pixel's own samples stay out: a decision drawn from them would
-/// keep them exactly when they missed a small bright feature (a lamp's reflection in glass)
-/// and so bias the pixel low (−17 % in such a tile of cornell-spheres at 1 spp).
+/// The largest channel range of the seen part over the samples of pixel (x, y) and its eight
+/// neighbours together (rows of \p width): an edge between two pixels shows even at one sample
+/// each, and a rim that only clips a pixel's corner may miss its samples but not theirs. The
+/// neighbours alone would keep a pixel's own rare hit (the lamp seen through cornell-spheres'
+/// glass in one sample of sixteen: a firefly); its own samples alone would keep the pixel
+/// exactly when they missed a small bright feature (−17 % in such a tile at 1 spp).
 double seen_range_around(std::span<const FirstSamples> first, int width, int height, int x, int y) {
     constexpr float inf = std::numeric_limits<float>::infinity();
     Rgb low{inf, inf, inf}, high{-inf, -inf, -inf};
-    if (width * height < 2)
-        return 0.0;
     for (int v = std::max(y - 1, 0); v <= std::min(y + 1, height - 1); ++v)
         for (int u = std::max(x - 1, 0); u <= std::min(x + 1, width - 1); ++u) {
-            if (u == x && v == y)
-                continue;
             const FirstSamples& f = first[std::size_t(v) * std::size_t(width) + std::size_t(u)];
             for (int c = 0; c < 3; ++c) {
                 low[c] = std::min(low[c], f.seen_low[c]);

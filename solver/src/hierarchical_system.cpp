@@ -260,16 +260,6 @@ bool run_cycle(HierarchicalSystem& sys, LinkSet& refiner, const Scene& scene, co
     return last;
 }
 
-// Σ A |ΔB| over the roots (largest channel) between \p before and the current radiosities.
-double root_change(const Hierarchy& h, const std::vector<Rgb>& before, const std::vector<Rgb>& b) {
-    double change = 0;
-    for (std::size_t n = 0; n < h.root_count; ++n) {
-        const Rgb d = b[n] - before[n];
-        change += double(std::max({std::abs(d.r), std::abs(d.g), std::abs(d.b)})) * h.area[n];
-    }
-    return change;
-}
-
 // A leaf's reflected weights are weighed by the radiosities of an earlier solve (those kept
 // from an earlier cycle by the first solve's), and the solve's radiosities depend on them:
 // weigh every leaf by the current radiosities and solve again until the radiosities change
@@ -280,13 +270,13 @@ void settle_reflected_weights(HierarchicalSystem& sys, const Scene& scene, const
                               SweepLog& log) {
     NodeValues& v = sys.values;
     for (int round = 0; round < k_max_weight_rounds; ++round) {
-        const std::vector<Rgb> before(v.b.begin(), v.b.begin() + std::ptrdiff_t(sys.h.root_count));
+        const std::vector<Rgb> before = v.b;
         v.weights.reflected_solved = false; // every entry afresh
         v.weights = leaf_weights(sys.h, sys.links, v.b, true, v.weights);
         pull_emit(sys.h, v);
         solve_links(sys.h, sys.links, v, sys.clusters, scene.solver, sys.iteration, sys.emitted,
                     log);
-        const double change = root_change(sys.h, before, v.b) / std::max(sys.emitted, 1e-30);
+        const double change = relative_leaf_change(sys.h, before, v.b, sys.emitted);
         ctx.debug("hierarchical: leaf weights settled by the last radiosities, round {}: change "
                   "{:.2e}",
                   round + 1, change);

@@ -58,6 +58,9 @@ struct BakeOptions {
     bool keep_state = true;
     /// Hierarchical: keep the mesher's mesh in BakeResult::input_mesh.
     bool keep_input_mesh = false;
+    /// False: mesh and render only, no solve and no sensors (`penumbra render --gather none`,
+    /// whose path tracer reads no solution, so that equal-time comparisons are fair).
+    bool solve = true;
 };
 
 /// \brief The render `bake` makes without options: the final gather at the camera's samples

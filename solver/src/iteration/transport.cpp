@@ -108,6 +108,11 @@ void add_emit_shares(const Hierarchy& h, NodeValues& v, std::uint32_t x, const R
             b * float(h.area[x] / h.area[a] * v.weights.emit[v.weights.at(x, h.level[a])]);
 }
 
+// A |ΔB| summed over the channels.
+double leaf_change(const Rgb& d, double area) {
+    return (double(std::abs(d.r)) + std::abs(d.g) + std::abs(d.b)) * area;
+}
+
 // Push irradiance down and pull radiosity up in one tree; returns the node's new radiosity
 // and adds Σ A |ΔB| over the leaves to \p change.
 Rgb push_pull(const Hierarchy& h, NodeValues& v, std::uint32_t node, const Rgb& down_direct,
@@ -132,8 +137,7 @@ Rgb push_pull(const Hierarchy& h, NodeValues& v, std::uint32_t node, const Rgb& 
         v.h_direct[node] = hd;
         v.h_indirect[node] = hi;
         v.b_lo[node] = v.b_hi[node] = b.max_component();
-        const Rgb d = b - v.b[node];
-        change += (double(std::abs(d.r)) + std::abs(d.g) + std::abs(d.b)) * h.area[node];
+        change += leaf_change(b - v.b[node], h.area[node]);
     } else {
         Rgb sum_b, sum_hd, sum_hi;
         if (weighted)
@@ -205,6 +209,15 @@ double relative_change(double change, double emitted) {
 }
 
 } // namespace
+
+double relative_leaf_change(const Hierarchy& h, const std::vector<Rgb>& before,
+                            const std::vector<Rgb>& after, double emitted) {
+    double change = 0;
+    for (std::size_t n = 0; n < h.size(); ++n)
+        if (h.is_leaf(std::uint32_t(n)))
+            change += leaf_change(after[n] - before[n], h.area[n]);
+    return relative_change(change, emitted);
+}
 
 TreeNodes tree_nodes(const Hierarchy& h) {
     TreeNodes t;

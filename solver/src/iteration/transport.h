@@ -104,6 +104,10 @@ TreeNodes tree_nodes(const Hierarchy& h);
 /// and hands the observer a snapshot when one is due.
 void record_pass(const Hierarchy& h, const NodeValues& v, SweepLog& log, double relative,
                  bool history);
+/// Σ A |ΔB| over the leaves and channels between \p before and \p after, over 3 × \p emitted:
+/// the change by which every sweep, and the rounds that re-weigh the leaves, stop.
+double relative_leaf_change(const Hierarchy& h, const std::vector<Rgb>& before,
+                            const std::vector<Rgb>& after, double emitted);
 /// Recomputes the inner nodes' radiosities, ranges and b_emit from the leaves.
 void pull_all(const Hierarchy& h, NodeValues& v);
 /// The roots' radiosities and irradiances as a solution on the input mesh.

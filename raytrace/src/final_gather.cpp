@@ -24,6 +24,7 @@
 #include "irradiance_cache.h"
 #include "path_geometry.h"
 #include "photon_map.h"
+#include "pixel_strata.h"
 
 #include "core/bsdf.h"
 #include "core/error.h"
@@ -48,6 +49,8 @@ namespace {
 constexpr int k_roulette_after = 3;
 /// A gather hit closer than this many element sizes to its origin continues the path.
 constexpr double k_near_gather_sizes = 2.0;
+/// Keys of PixelStrata: a camera sample's light picks, light directions and gather rays.
+constexpr std::uint64_t k_light_pick_strata = 1, k_light_direction_strata = 2, k_gather_strata = 3;
 /// Most multi-jittered samples per axis of a refined edge pixel (as the lightmap preview).
 constexpr int k_edge_samples_per_axis = 64;
 
@@ -110,15 +113,16 @@ struct LightSampleU {
     double pick = 0;
     Vec2 area, dir;
 
-    static LightSampleU random(Pcg32& rng) { return stratified(0, 1, rng); }
+    static LightSampleU random(Pcg32& rng) { return stratified(0, 1, {}, rng); }
     /// Sample \p k of \p count: the element's pick and the direction's first number in stratum
-    /// k (the point on the element stays independent of the pick, which stratifies the light's
-    /// elements).
-    static LightSampleU stratified(int k, int count, Pcg32& rng) {
+    /// k, each in the fine cell there of the pixel's camera sample (the point on the element
+    /// stays independent of the pick, which stratifies the light's elements).
+    static LightSampleU stratified(int k, int count, const std::array<PixelStrata, 2>& pixel,
+                                   Pcg32& rng) {
         LightSampleU u;
-        u.pick = (k + rng.next_double()) / count;
+        u.pick = pixel[0].position(k, count, rng.next_double());
         u.area = {rng.next_double(), rng.next_double()};
-        u.dir = {(k + rng.next_double()) / count, rng.next_double()};
+        u.dir = {pixel[1].position(k, count, rng.next_double()), rng.next_double()};
         return u;
     }
 };
@@ -276,7 +280,8 @@ private:
     Rgb split(const Bsdf& bsdf, const SurfaceHit& s, const Material& material, const Vec3& wo,
               bool receiver, const PathState& path) const {
         Pcg32 stream = split_stream(*path.split);
-        const Rgb direct_mean = stratified_direct(bsdf, s, wo, stream);
+        const Rgb direct_mean = stratified_direct(bsdf, s, wo, *path.split, stream);
+        const PixelStrata pixel = pixel_strata(*path.split, k_gather_strata);
         const int strata = strata_per_axis(scene_.render.gather_rays);
         RgbD carried_sum;
         for (int k = 0; k < strata * strata; ++k) {
@@ -286,8 +291,8 @@ private:
             child.split.reset();
             child.beta = Rgb(1.0f);
             const double u_lobe = rng.next_double();
-            const Vec2 u{(k % strata + rng.next_double()) / strata,
-                         (k / strata + rng.next_double()) / strata};
+            const double jx = rng.next_double(), jy = rng.next_double();
+            const Vec2 u = pixel.position(k % strata, k / strata, strata, {jx, jy});
             if (!scatter(child, bsdf, s, material, wo, receiver, u_lobe, u) ||
                 !survives_roulette(child, rng))
                 continue;
@@ -305,13 +310,23 @@ private:
                                  std::uint64_t(id.index), seed_);
     }
 
+    /// Which fine cells of the split's strata camera sample \p id takes (\p kind: light or
+    /// gather samples).
+    PixelStrata pixel_strata(const SampleId& id, std::uint64_t kind) const {
+        return {strata_per_axis(options_.spp), id.index,
+                hash_words({std::uint64_t(RngPurpose::gather_split), std::uint64_t(id.x),
+                            std::uint64_t(id.y), kind, seed_})};
+    }
+
     /// The mean of render.light_samples stratified light samples drawn from \p stream.
-    Rgb stratified_direct(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo,
+    Rgb stratified_direct(const Bsdf& bsdf, const SurfaceHit& s, const Vec3& wo, const SampleId& id,
                           Pcg32& stream) const {
         const int lights = scene_.render.light_samples;
+        const std::array pixel{pixel_strata(id, k_light_pick_strata),
+                               pixel_strata(id, k_light_direction_strata)};
         RgbD sum;
         for (int k = 0; k < lights; ++k)
-            sum += RgbD(direct(bsdf, s, wo, LightSampleU::stratified(k, lights, stream)));
+            sum += RgbD(direct(bsdf, s, wo, LightSampleU::stratified(k, lights, pixel, stream)));
         return Rgb{float(sum.r / lights), float(sum.g / lights), float(sum.b / lights)};
     }
 
@@ -370,7 +385,7 @@ private:
         Rgb light = material.reflectance * *irradiance * float(k_inv_pi);
         if (path.split) {
             Pcg32 stream = split_stream(*path.split);
-            light += stratified_direct(bsdf, s, wo, stream);
+            light += stratified_direct(bsdf, s, wo, *path.split, stream);
         } else {
             light += direct(bsdf, s, wo, LightSampleU::random(rng));
         }

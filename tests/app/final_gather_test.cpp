@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -394,6 +395,23 @@ double mean_luminance(const Image& image) {
     for (const Rgb& p : image.pixels)
         sum += test::tile_luminance(p);
     return sum / double(image.pixels.size());
+}
+
+/// `render --gather none` is the pure path tracer: it reads no solution, so it solves none
+/// (render.json times a mesh and a render stage, no solve), and still renders the scene.
+TEST(RenderCommand, PathTracerModeDoesNotSolve) {
+    const std::string dir = test::temp_dir("render_none");
+    const std::string scene = cornell_with_cameras(dir);
+    ASSERT_EQ(test::run_cli("render " + scene + " --gather none -q -o " + dir + "/none").exit_code,
+              0);
+    std::ifstream in(dir + "/none/render.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(json.find("\"render\":"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"mesh\":"), std::string::npos) << json;
+    EXPECT_EQ(json.find("\"solve\":"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"gather\": \"none\""), std::string::npos) << json;
+    const Image image = read_exr(dir + "/none/render.exr");
+    EXPECT_GT(mean_luminance(image), 0.0);
 }
 
 /// `render --solution` re-solves from the bake's hierarchy and links (as `bake --reuse`): its

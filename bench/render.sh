@@ -32,8 +32,8 @@ spheres)
     echo "bench/render.sh: SCENE must be cornell or spheres, not '$SCENE'" >&2
     exit 2 ;;
 esac
-final_spp="${FINAL_SPP:-4 16 64 144}"
-none_spp="${NONE_SPP:-1 4 16}"
+final_spp="${FINAL_SPP:-9 16 25 36}"
+none_spp="${NONE_SPP:-16 36 64}"
 repeat="${REPEAT:-2}"
 target="${TARGET:-$default_target}"
 work="$(mktemp -d)"

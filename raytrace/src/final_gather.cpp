@@ -225,6 +225,8 @@ private:
         for (;;) {
             const Vec3 origin = path.origin, dir = path.dir;
             const auto hit = rt_.intersect(Vec3f(origin), Vec3f(dir), 0.0f, k_infinity);
+            if (has_glazing_) // intersect() sees through panes: count what they let pass
+                path.beta = path.beta * panes_crossed(origin, dir, hit);
             if (hit.front_element < 0) {
                 if (!last.caustic())
                     out.add(last, beta * escaped(dir, last));
@@ -416,6 +418,14 @@ private:
         if (!(reach > 0))
             return 1.0f;
         return segment_transmittance(rt_, {Vec3f(from), Vec3f(dir), 0.0f, reach}, has_glazing_);
+    }
+
+    /// The transmittance of the panes of glazing a ray from \p origin along \p dir crosses
+    /// before \p hit (or on its way out of the scene): as shadow rays count them.
+    float panes_crossed(const Vec3& origin, const Vec3& dir, const EmbreeScene::Hit& hit) const {
+        const double distance =
+            hit.front_element < 0 ? std::numeric_limits<double>::infinity() : double(hit.t);
+        return transmittance(origin, dir, distance);
     }
 
     /// Emitted radiance of \p element toward -dir, weighted against area-light sampling.

@@ -332,6 +332,47 @@ TEST(RenderCommand, BadFlagsAreOneLineErrors) {
     }
 }
 
+// ---- Glazing: what the camera sees through a pane ----
+
+/// A camera under a wide pane of clear glass looks up at a uniform sky of radiance L: every
+/// pixel reads T(θ) L, T the pane's transmittance at the pixel ray's incidence θ (the mean of
+/// its channels, as shadow rays count panes), within 1 % (T varies by less than that over a
+/// pixel of this 40° view); without the pane, L.
+TEST(FinalGatherGlazing, CameraSeesTheSkyThroughAPaneAttenuated) {
+    const double radiance = 10.0;
+    Scene scene;
+    const auto black = test::add_material(scene, "black", Rgb(0), {}, false);
+    const auto glass = test::add_clear_glass(scene);
+    test::add_rect(scene, "floor", black, {-1, -1, 0}, {2, 0, 0}, {0, 2, 0});
+    test::add_rect(scene, "pane", glass, {-10, -10, 0.5}, {20, 0, 0}, {0, 20, 0});
+    scene.sky = Sky{};
+    scene.sky->model = UniformSky{};
+    scene.sky->zenith_radiance = radiance;
+    scene.mesher.max_edge_length = 1.0;
+    Camera camera;
+    camera.eye = {0, 0, 0.2};
+    camera.look_at = {0, 0, 1};
+    camera.up = {0, 1, 0};
+    camera.fov_deg = 40;
+    camera.width = camera.height = 8;
+    scene.camera = camera;
+    const ThinGlass pane = *glazing_of(scene.materials[glass]);
+    const app::BakeResult baked = test::bake(scene);
+    RenderOptions options;
+    options.spp = 4;
+    const Image image = render(baked, scene, options, test::quiet_context());
+    const double half_width = std::tan(20.0 * k_pi / 180.0);
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const double px = ((x + 0.5) / image.width * 2 - 1) * half_width;
+            const double py = ((y + 0.5) / image.height * 2 - 1) * half_width;
+            const double cos_theta = 1.0 / std::sqrt(1 + px * px + py * py);
+            const Rgb t = pane.transmittance(cos_theta);
+            const double expected = radiance * (t.r + t.g + t.b) / 3.0;
+            EXPECT_NEAR(image.at(x, y).g, expected, 0.01 * expected) << x << ", " << y;
+        }
+}
+
 // ---- Named cameras and re-rendering from an earlier bake's solution ----
 
 /// The bundled Cornell box (its geometry copied beside it) at 32², with a second camera named

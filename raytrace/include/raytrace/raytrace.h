@@ -33,8 +33,9 @@ public:
     /// Opaque elements block every query; panes of glazing (Patch::glazing) only
     /// transmittance(), which multiplies each pane's T(θ) (the mean of its channels) once per
     /// pane surface crossed. occluded(), first_hit() and intersect() see through panes (the
-    /// camera sees the room behind a window; light between two surfaces through a pane passes
-    /// unattenuated until the solver's links carry transmittance, issue #30).
+    /// camera sees the room behind a window, the final gather's paths taking the panes'
+    /// transmittance; light between two surfaces through a pane passes unattenuated until the
+    /// solver's links carry transmittance, issue #30).
     void occluded(std::span<const Segment> segments, std::span<std::uint8_t> out) const override;
     /// Names the front element of a two-sided surface.
     void first_hit(std::span<const Segment> segments, std::span<std::int32_t> hit) const override;

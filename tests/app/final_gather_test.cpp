@@ -132,12 +132,7 @@ Scene disc_scene(const LensSetup& s) {
             {s.disc_radius * std::cos(phi), s.disc_radius * std::sin(phi), s.distance});
     }
     scene.polygons.push_back(disc);
-    Camera camera;
-    camera.eye = {0, 0, 0};
-    camera.look_at = {0, 0, 1};
-    camera.up = {0, 1, 0};
-    camera.fov_deg = 20;
-    camera.width = camera.height = 96;
+    Camera camera = test::square_camera({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 20, 96);
     camera.aperture_radius_m = s.aperture;
     camera.focus_distance_m = s.focus;
     scene.camera = camera;
@@ -349,13 +344,7 @@ TEST(FinalGatherGlazing, CameraSeesTheSkyThroughAPaneAttenuated) {
     scene.sky->model = UniformSky{};
     scene.sky->zenith_radiance = radiance;
     scene.mesher.max_edge_length = 1.0;
-    Camera camera;
-    camera.eye = {0, 0, 0.2};
-    camera.look_at = {0, 0, 1};
-    camera.up = {0, 1, 0};
-    camera.fov_deg = 40;
-    camera.width = camera.height = 8;
-    scene.camera = camera;
+    scene.camera = test::square_camera({0, 0, 0.2}, {0, 0, 1}, {0, 1, 0}, 40, 8);
     const ThinGlass pane = *glazing_of(scene.materials[glass]);
     const app::BakeResult baked = test::bake(scene);
     RenderOptions options;

@@ -106,12 +106,7 @@ TEST(RenderEdges, RimPixelsConvergeToTheirExactCoverage) {
              {-0.61, -0.43}, {0.57, -0.43}, {0.57, 0.52}, {-0.61, 0.52}})
         lamp.vertices.emplace_back(c * x - s * y, s * x + c * y, 0); // faces +z, the camera
     scene.polygons.push_back(lamp);
-    Camera camera;
-    camera.eye = {0, 0, 5};
-    camera.look_at = {0, 0, 0};
-    camera.up = {0, 1, 0};
-    camera.fov_deg = 40;
-    camera.width = camera.height = 24;
+    const Camera camera = test::square_camera({0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40, 24);
     scene.camera = camera;
     const app::BakeResult baked = test::bake(scene);
 

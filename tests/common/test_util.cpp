@@ -199,6 +199,17 @@ void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t materi
     add_rect(scene, "wall_x1", material, lo + ex, ez, ey); // faces -x
 }
 
+Camera square_camera(const Vec3& eye, const Vec3& look_at, const Vec3& up, double fov_deg,
+                     int size) {
+    Camera camera;
+    camera.eye = eye;
+    camera.look_at = look_at;
+    camera.up = up;
+    camera.fov_deg = fov_deg;
+    camera.width = camera.height = size;
+    return camera;
+}
+
 Scene furnace_room(float rho, float exitance) {
     Scene scene;
     const auto m = add_material(scene, "furnace", Rgb(rho), Rgb(float(exitance / k_pi)));

@@ -82,6 +82,11 @@ std::uint32_t add_lobe_material(Scene& scene, const std::string& name, const Lob
 void add_rect(Scene& scene, const std::string& name, std::uint32_t material, const Vec3& origin,
               const Vec3& u, const Vec3& v);
 
+/// A pinhole camera at \p eye looking at \p look_at (\p up), \p fov_deg wide, of size × size
+/// pixels.
+Camera square_camera(const Vec3& eye, const Vec3& look_at, const Vec3& up, double fov_deg,
+                     int size);
+
 /// Adds an axis-aligned box room [lo, hi] whose six walls face inwards.
 void add_room(Scene& scene, const Vec3& lo, const Vec3& hi, std::uint32_t material);
 

@@ -224,9 +224,7 @@ private:
         const LastScatter& last = path.last;
         for (;;) {
             const Vec3 origin = path.origin, dir = path.dir;
-            const auto hit = rt_.intersect(Vec3f(origin), Vec3f(dir), 0.0f, k_infinity);
-            if (has_glazing_) // intersect() sees through panes: count what they let pass
-                path.beta = path.beta * panes_crossed(origin, dir, hit);
+            const auto hit = intersect_through_panes(origin, dir, path.beta);
             if (hit.front_element < 0) {
                 if (!last.caustic())
                     out.add(last, beta * escaped(dir, last));
@@ -400,13 +398,13 @@ private:
         last.delta = last.only_delta = false;
         last.pdf = sample->pdf;
         last.sky_normal = SurfaceGeometry::facing(s.shading, wo);
-        const auto next = rt_.intersect(Vec3f(surfaces_.offset(s, sample->wi)), Vec3f(sample->wi),
-                                        0.0f, k_infinity);
+        Rgb weight = sample->weight;
+        const auto next =
+            intersect_through_panes(surfaces_.offset(s, sample->wi), sample->wi, weight);
         if (next.front_element < 0)
-            return light + sample->weight * escaped(sample->wi, last);
+            return light + weight * escaped(sample->wi, last);
         if (next.element >= 0)
-            light +=
-                sample->weight * emitted(std::uint32_t(next.element), next.t, sample->wi, last);
+            light += weight * emitted(std::uint32_t(next.element), next.t, sample->wi, last);
         return light;
     }
 
@@ -420,12 +418,17 @@ private:
         return segment_transmittance(rt_, {Vec3f(from), Vec3f(dir), 0.0f, reach}, has_glazing_);
     }
 
-    /// The transmittance of the panes of glazing a ray from \p origin along \p dir crosses
-    /// before \p hit (or on its way out of the scene): as shadow rays count them.
-    float panes_crossed(const Vec3& origin, const Vec3& dir, const EmbreeScene::Hit& hit) const {
-        const double distance =
-            hit.front_element < 0 ? std::numeric_limits<double>::infinity() : double(hit.t);
-        return transmittance(origin, dir, distance);
+    /// The first opaque hit of the ray from \p origin along \p dir; \p beta takes the
+    /// transmittance of the panes of glazing crossed before it (or on the way out of the
+    /// scene), as shadow rays count them: intersect() sees through panes.
+    EmbreeScene::Hit intersect_through_panes(const Vec3& origin, const Vec3& dir, Rgb& beta) const {
+        const auto hit = rt_.intersect(Vec3f(origin), Vec3f(dir), 0.0f, k_infinity);
+        if (has_glazing_) {
+            const double distance =
+                hit.front_element < 0 ? std::numeric_limits<double>::infinity() : double(hit.t);
+            beta = beta * transmittance(origin, dir, distance);
+        }
+        return hit;
     }
 
     /// Emitted radiance of \p element toward -dir, weighted against area-light sampling.

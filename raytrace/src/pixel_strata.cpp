@@ -10,7 +10,8 @@ std::uint32_t permuted(std::uint32_t i, std::uint32_t n, std::uint64_t key) {
     std::uint32_t mask = n - 1;
     for (int s = 1; s < 32; s *= 2)
         mask |= mask >> s;
-    const auto k = std::uint32_t(mix64(key)), k2 = std::uint32_t(mix64(key) >> 32);
+    const std::uint64_t mixed = mix64(key);
+    const auto k = std::uint32_t(mixed), k2 = std::uint32_t(mixed >> 32);
     // Each step is a bijection of 0 … mask: xor and add a constant, multiply by an odd one,
     // xor with a right shift of itself.
     do {
@@ -19,7 +20,7 @@ std::uint32_t permuted(std::uint32_t i, std::uint32_t n, std::uint64_t key) {
         i ^= i >> 3;
         i = (i + k2) & mask;
         i = (i * 0x85ebca6bu) & mask;
-        i ^= (i & mask) >> 5;
+        i ^= i >> 5;
         i = (i * 0xc2b2ae35u) & mask;
         i ^= i >> 2;
     } while (i >= n);
@@ -28,6 +29,8 @@ std::uint32_t permuted(std::uint32_t i, std::uint32_t n, std::uint64_t key) {
 
 std::uint32_t PixelStrata::cell(std::uint64_t stratum) const {
     const auto cells = std::uint32_t(per_axis) * std::uint32_t(per_axis);
+    if (cells == 1)
+        return 0; // one camera sample (a path's later vertices, or 1 spp): no hash to draw
     return permuted(std::uint32_t(sample), cells, hash_words({key, stratum}));
 }
 

@@ -33,42 +33,6 @@ private:
     std::chrono::steady_clock::time_point start_;
 };
 
-/// Light that reaches diffuse surfaces through specular ones (docs/rendering.md): the
-/// solve with \p specular, the light of the sources (L S+ D), then once more from its state
-/// with the transfers between diffuse surfaces through specular ones (D S+ D), traced with
-/// the first solve's exitance as their importance; that solve carries them to convergence.
-solver::SolveResult solve_with_specular_light(const Scene& scene, const RadiosityMesh& mesh,
-                                              const raytrace::EmbreeScene& rt,
-                                              SpecularLight specular,
-                                              const solver::SolveObserver* series,
-                                              const solver::HierarchicalState* reuse,
-                                              solver::SolveStats& stats, const Context& ctx) {
-    std::vector<Rgb> exitance; // B − E per input element, from the final snapshot
-    solver::SolveObserver observer;
-    observer.every_shots = series ? series->every_shots : 0;
-    observer.on_pass = [&](const Solution& snapshot, std::int64_t shots, double unshot,
-                           bool final) {
-        if (series)
-            series->on_pass(snapshot, shots, unshot, final);
-        if (!final)
-            return;
-        exitance.resize(mesh.element_count());
-        for (std::uint32_t e = 0; e < mesh.element_count(); ++e) {
-            const Rgb m = snapshot.radiosity[e] - mesh.patch_of(e).emission;
-            exitance[e] = Rgb(std::max(0.0f, m.r), std::max(0.0f, m.g), std::max(0.0f, m.b));
-        }
-    };
-    solver::SolveResult first =
-        solver::solve(scene, mesh, rt, ctx, &stats, &observer, reuse, &specular);
-    if (!first.state || exitance.empty())
-        return first;
-    specular.transfers = raytrace::specular_transfers(rt, scene, exitance, ctx);
-    if (specular.transfers.empty())
-        return first;
-    stats = solver::SolveStats{};
-    return solver::solve(scene, mesh, rt, ctx, &stats, series, first.state.get(), &specular);
-}
-
 } // namespace
 
 raytrace::RenderOptions default_render_options(const Scene& scene) {
@@ -105,17 +69,19 @@ BakeResult bake(const Scene& scene, const BakeOptions& options, const Context& c
                 series->add(result.mesh, snapshot, shots);
             };
         }
-        // Light that reaches diffuse surfaces through specular ones (docs/rendering.md).
-        SpecularLight specular{raytrace::caustic_irradiance(
-                                   raytrace::shoot_caustic_photons(*rt, scene, ctx), result.mesh),
-                               {}};
+        // Light that reaches diffuse surfaces through specular ones (docs/rendering.md): the
+        // sources' (L S+ D) from caustic photons; the diffuse surfaces' (D S+ D) traced by
+        // the solve once it has a guess of their exitance.
+        SpecularLight specular;
+        specular.irradiance = raytrace::caustic_irradiance(
+            raytrace::shoot_caustic_photons(*rt, scene, ctx), result.mesh);
+        if (!specular.irradiance.empty())
+            specular.trace_transfers = [&](std::span<const Rgb> exitance) {
+                return raytrace::specular_transfers(*rt, scene, exitance, ctx);
+            };
         solver::SolveResult solved =
-            specular.empty()
-                ? solver::solve(scene, result.mesh, *rt, ctx, &result.stats,
-                                series ? &observer : nullptr, options.reuse)
-                : solve_with_specular_light(scene, result.mesh, *rt, std::move(specular),
-                                            series ? &observer : nullptr, options.reuse,
-                                            result.stats, ctx);
+            solver::solve(scene, result.mesh, *rt, ctx, &result.stats, series ? &observer : nullptr,
+                          options.reuse, &specular);
         result.solution = std::move(solved.solution);
         if (options.keep_state)
             result.solver_state = std::move(solved.state);

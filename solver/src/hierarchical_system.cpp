@@ -206,8 +206,9 @@ void report_cycle(const Context& ctx, const HierarchicalSystem& sys, int cycle, 
 }
 
 // One refine → solve cycle; returns true if it was the last.
+// Cycles before \p first_last are not the last, whatever their refinement did.
 bool run_cycle(HierarchicalSystem& sys, LinkSet& refiner, const Scene& scene, const Context& ctx,
-               ProgressStage& progress, SweepLog& log, int cycle) {
+               ProgressStage& progress, SweepLog& log, int cycle, int first_last) {
     Hierarchy& h = sys.h;
     NodeValues& v = sys.values;
     auto t0 = Clock::now();
@@ -246,9 +247,10 @@ bool run_cycle(HierarchicalSystem& sys, LinkSet& refiner, const Scene& scene, co
     // A refinement that changed nothing, or added next to nothing, is the last: the
     // solution after it stays where the next one would leave it (k_settled_growth). The
     // cycles before it sweep to a looser residual.
-    const bool last = cycle + 1 == k_max_cycles ||
-                      (cycle > 0 && (!changed || (settled(links_before, sys.links.link_count()) &&
-                                                  settled(nodes_before, h.size()))));
+    const bool last =
+        cycle + 1 == k_max_cycles ||
+        (cycle >= first_last && (!changed || (settled(links_before, sys.links.link_count()) &&
+                                              settled(nodes_before, h.size()))));
     SolverSettings sweeps = scene.solver;
     if (!last)
         sweeps.residual *= k_intermediate_residual;
@@ -288,21 +290,45 @@ void settle_reflected_weights(HierarchicalSystem& sys, const Scene& scene, const
              k_max_weight_rounds);
 }
 
+void check_transfers(std::span<const SpecularLight::Transfer> transfers, std::size_t roots) {
+    for (const SpecularLight::Transfer& t : transfers)
+        if (t.from >= roots || t.to >= roots)
+            throw InternalError("build_hierarchical: a specular transfer names no element");
+}
+
 // The sources' specular light as a fixed source (its power in the emitted total, as the sun's
 // is) and the transfers between roots for the sweeps to apply (NodeValues::specular).
 void take_specular_light(HierarchicalSystem& sys, const SpecularLight& specular) {
     const std::size_t roots = sys.h.root_count;
     if (!specular.irradiance.empty() && specular.irradiance.size() != roots)
         throw InternalError("build_hierarchical: one specular irradiance per element expected");
-    for (const SpecularLight::Transfer& t : specular.transfers)
-        if (t.from >= roots || t.to >= roots)
-            throw InternalError("build_hierarchical: a specular transfer names no element");
+    check_transfers(specular.transfers, roots);
     NodeValues& v = sys.values;
     v.specular_fixed = specular.irradiance;
     v.specular_fixed.resize(roots);
     v.specular = v.specular_fixed;
     v.specular_transfers = specular.transfers;
     sys.emitted += sys.specular_power().max_component();
+}
+
+// The transfers traced for the roots' present reflected exitance, B − E (SpecularLight::
+// trace_transfers): an estimate is all their photons need, since they are unbiased for any
+// density of sources, and tracing them inside the solve saves a second one.
+void trace_specular_transfers(HierarchicalSystem& sys, const SpecularLight& specular,
+                              const Context& ctx) {
+    const auto t0 = Clock::now();
+    const Hierarchy& h = sys.h;
+    NodeValues& v = sys.values;
+    std::vector<Rgb> exitance(h.root_count);
+    for (std::size_t r = 0; r < h.root_count; ++r) {
+        const Rgb m = v.b[r] - h.emission[r];
+        exitance[r] = Rgb(std::max(0.0f, m.r), std::max(0.0f, m.g), std::max(0.0f, m.b));
+    }
+    sys.traced_transfers = specular.trace_transfers(exitance);
+    check_transfers(sys.traced_transfers, h.root_count);
+    v.specular_transfers = sys.traced_transfers;
+    ctx.debug("hierarchical: {} specular transfers traced from the solve's exitance, {:.2f} s",
+              sys.traced_transfers.size(), seconds_since(t0));
 }
 
 } // namespace
@@ -344,11 +370,22 @@ build_hierarchical(const Scene& scene, const RadiosityMesh& mesh, const Visibili
                     sys->settings);
     link_system(*sys, refiner, scene, ctx, reuse);
     sys->iteration = scene.solver.iteration;
+    // Transfers to trace from the solution's exitance: from a reused state's, or after the
+    // first cycle. Refinement then sees their light at least once before it may settle.
+    const bool trace = specular && specular->transfers.empty() && specular->trace_transfers;
+    if (reuse && trace)
+        trace_specular_transfers(*sys, *specular, ctx);
     if (reuse)
         resolve_saved(*sys, scene, *reuse, log);
-    for (int cycle = 0; cycle < k_max_cycles; ++cycle)
-        if (run_cycle(*sys, refiner, scene, ctx, progress, log, cycle))
+    int first_last = 1;
+    for (int cycle = 0; cycle < k_max_cycles; ++cycle) {
+        if (run_cycle(*sys, refiner, scene, ctx, progress, log, cycle, first_last))
             break;
+        if (cycle == 0 && trace && !reuse) {
+            trace_specular_transfers(*sys, *specular, ctx);
+            first_last = 2;
+        }
+    }
     settle_reflected_weights(*sys, scene, ctx, log);
     return sys;
 }

@@ -48,6 +48,9 @@ struct HierarchicalSystem {
     /// W, largest channel: the power of the sources solved last, what the residual is
     /// relative to.
     double emitted = 0;
+    /// The specular transfers traced during the build (SpecularLight::trace_transfers), which
+    /// NodeValues::specular_transfers then views.
+    std::vector<SpecularLight::Transfer> traced_transfers;
 
     /// What the sun's and the sky's links deliver (W per channel): their power in the balance.
     RgbD distant_power() const { return links.distant_power(h); }

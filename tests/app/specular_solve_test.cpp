@@ -113,6 +113,23 @@ INSTANTIATE_TEST_SUITE_P(SpecularSolve, SpecularSolveIterations,
                          ::testing::Values(SolverIteration::jacobi, SolverIteration::shooting),
                          [](const auto& info) { return std::string(enum_name(info.param)); });
 
+// A re-solve (--reuse) traces the transfers from the saved radiosities, those of another
+// floor reflectance, and still carries them to the changed scene's convergence.
+TEST(SpecularSolve, ResolveAfterAReflectanceChangeConverges) {
+    Scene before = emitting_floor_in_mirrors();
+    before.materials[0].reflectance = Rgb(0.2f);
+    const app::BakeResult first = test::bake(before);
+    ASSERT_TRUE(first.solver_state);
+    const app::BakeResult resolved =
+        test::bake(emitting_floor_in_mirrors(), 0, first.solver_state.get());
+    const double rho_r = k_floor_reflectance * k_mirror_reflectance;
+    const double expected = k_mirror_reflectance * k_floor_exitance_w_m2 / (1 - rho_r);
+    const double before_expected =
+        k_mirror_reflectance * k_floor_exitance_w_m2 / (1 - 0.2 * k_mirror_reflectance);
+    EXPECT_NEAR(floor_mean_indirect(first), before_expected, 0.02 * before_expected);
+    EXPECT_NEAR(floor_mean_indirect(resolved), expected, 0.02 * expected);
+}
+
 TEST(SpecularSolve, SolutionDoesNotDependOnTheThreadCount) {
     const Scene scene = point_light_under_mirror();
     const app::BakeResult one = test::bake(scene, 1), two = test::bake(scene, 2);

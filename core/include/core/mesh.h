@@ -4,7 +4,9 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -108,8 +110,12 @@ struct SpecularLight {
     /// Diffuse to diffuse (D S+ D), linear in the solution's exitance, so that the solve
     /// carries it through any number of such passes.
     std::vector<Transfer> transfers;
+    /// Traces the transfers for a guess of the reflected exitance per element (W/m²), the
+    /// importance of their photons' sources, when \p transfers is empty: the solver calls it
+    /// once its first cycle has that guess, so that one solve refines for them too.
+    std::function<std::vector<Transfer>(std::span<const Rgb> exitance)> trace_transfers;
 
-    bool empty() const { return irradiance.empty() && transfers.empty(); }
+    bool empty() const { return irradiance.empty() && transfers.empty() && !trace_transfers; }
 };
 
 /// \brief Irradiance at a sensor point, computed at the point itself.

@@ -94,6 +94,8 @@ RadiosityResponse radiosity_response(const Material& m) {
     if (m.lobe)
         if (const auto* glass = std::get_if<ThinGlass>(&*m.lobe))
             r.transmittance = glass->hemispherical_transmittance();
+    r.specular_only = m.lobe && r.reflectance.is_black() && r.diffuse_transmittance.is_black() &&
+                      r.transmittance.is_black();
     return r;
 }
 

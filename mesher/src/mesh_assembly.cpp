@@ -87,6 +87,7 @@ void write_surface(RadiosityMesh& mesh, const Scene& scene, const Surface& s,
     front.normal = s.normal;
     front.reflectance = response.reflectance;
     front.diffuse_transmittance = response.diffuse_transmittance;
+    front.specular_only = response.specular_only;
     front.emission = response.emission * float(k_pi);
     front.glazing = glazing_of(scene.materials[poly.material]);
     Patch back = front;

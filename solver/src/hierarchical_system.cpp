@@ -82,6 +82,7 @@ Hierarchy reused_hierarchy(const RadiosityMesh& mesh, const HierarchicalState& s
         h.reflectance[n] = p.reflectance;
         h.transmittance[n] = p.diffuse_transmittance;
         h.opaque[n] = p.opaque() ? 1 : 0;
+        h.specular_only[n] = p.specular_only ? 1 : 0;
     }
     return h;
 }

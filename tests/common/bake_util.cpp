@@ -1,6 +1,7 @@
 #include "common/bake_util.h"
 
 #include <cmath>
+#include <map>
 
 #include "common/test_util.h"
 #include "core/scene_io.h"
@@ -19,6 +20,37 @@ Scene cornell_box(double max_edge) {
     scene.sensors.clear();
     scene.mesher.max_edge_length = max_edge;
     return scene;
+}
+
+namespace {
+
+// Per patch: Σ A B (summed over the channels) and Σ A.
+std::map<std::uint32_t, std::pair<double, double>> patch_sums(const app::BakeResult& r) {
+    std::map<std::uint32_t, std::pair<double, double>> sums;
+    for (std::size_t e = 0; e < r.mesh.element_count(); ++e) {
+        auto& s = sums[r.mesh.element_patch[e]];
+        s.first += r.mesh.element_area[e] * double(r.solution.radiosity[e].sum());
+        s.second += r.mesh.element_area[e];
+    }
+    return sums;
+}
+
+} // namespace
+
+double relative_patch_l1(const app::BakeResult& r, const app::BakeResult& ref,
+                         std::optional<std::uint32_t> skip_material) {
+    const auto a = patch_sums(r), b = patch_sums(ref);
+    double diff = 0, norm = 0;
+    for (const auto& [patch, s] : b) {
+        if (skip_material && ref.mesh.patches[patch].material == *skip_material)
+            continue;
+        const auto it = a.find(patch);
+        if (it == a.end())
+            return 1.0;
+        diff += std::abs(it->second.first / it->second.second * s.second - s.first);
+        norm += s.first;
+    }
+    return diff / norm;
 }
 
 double relative_l1(const std::vector<Rgb>& b, const std::vector<Rgb>& ref,

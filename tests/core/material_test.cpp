@@ -103,6 +103,7 @@ TEST(RadiosityResponse, DiffuseMaterialAsIs) {
         EXPECT_TRUE(r.emission_two_sided);
         EXPECT_TRUE(r.transmittance.is_black());
         EXPECT_TRUE(r.opaque());
+        EXPECT_FALSE(r.specular_only);
     }
 }
 
@@ -120,6 +121,8 @@ TEST(RadiosityResponse, SpecularMaterialsHaveNoDiffusePart) {
         EXPECT_TRUE(diffuse_reflectance(m).is_black());
         EXPECT_EQ(r.emission, m.emission);
         EXPECT_EQ(r.opaque(), !std::holds_alternative<ThinGlass>(lobe));
+        // Glazing passes light into the solution: not what the renderer alone shows.
+        EXPECT_EQ(r.specular_only, !std::holds_alternative<ThinGlass>(lobe));
     }
 }
 

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <map>
 
 #include <gtest/gtest.h>
 
@@ -38,32 +37,6 @@ Scene coarse_cornell() {
     return cornell(0.2, 3e-2);
 }
 
-// Area-weighted mean radiosity (sum of channels) of each patch: two solves on different leaf
-// meshes compare patch by patch.
-std::map<std::uint32_t, std::pair<double, double>> patch_means(const app::BakeResult& r) {
-    std::map<std::uint32_t, std::pair<double, double>> sums; // patch → (Σ A B, Σ A)
-    for (std::size_t e = 0; e < r.mesh.element_count(); ++e) {
-        auto& s = sums[r.mesh.element_patch[e]];
-        s.first += r.mesh.element_area[e] * double(r.solution.radiosity[e].sum());
-        s.second += r.mesh.element_area[e];
-    }
-    return sums;
-}
-
-// Σ_patches A |B̄ − B̄_ref| / Σ A B̄_ref.
-double relative_patch_l1(const app::BakeResult& r, const app::BakeResult& ref) {
-    const auto a = patch_means(r), b = patch_means(ref);
-    double diff = 0, norm = 0;
-    for (const auto& [patch, s] : b) {
-        const auto it = a.find(patch);
-        if (it == a.end())
-            return 1.0;
-        diff += std::abs(it->second.first / it->second.second * s.second - s.first);
-        norm += s.first;
-    }
-    return diff / norm;
-}
-
 std::uint32_t material_index(const Scene& scene, const std::string& name) {
     for (std::uint32_t m = 0; m < scene.materials.size(); ++m)
         if (scene.materials[m].name == name)
@@ -79,8 +52,8 @@ TEST(Reuse, ResolveAfterReflectanceChangeEqualsFullSolve) {
     after.materials[material_index(after, "red")].reflectance = Rgb(0.2f, 0.3f, 0.8f);
     const app::BakeResult resolved = bake(after, first.solver_state.get());
     const app::BakeResult full = bake(after);
-    const double change = relative_patch_l1(first, full);
-    const double error = relative_patch_l1(resolved, full);
+    const double change = test::relative_patch_l1(first, full);
+    const double error = test::relative_patch_l1(resolved, full);
     std::printf("patch L1: before vs after %.4f, re-solve vs full solve %.2e\n", change, error);
     EXPECT_GT(change, 0.01); // the change matters
     EXPECT_LT(error, 1e-3);

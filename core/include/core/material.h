@@ -121,6 +121,10 @@ struct RadiosityResponse {
     Rgb transmittance;
     /// Diffuse transmittance τ: a side's radiosity gains τ times the other side's irradiance.
     Rgb diffuse_transmittance;
+    /// A lobe and no diffuse part, nor glazing's transmittance (a mirror, a metal, a
+    /// dielectric): what the surface shows is traced by the renderer, and nothing reads the
+    /// solution's light on it but its reported irradiance, which the solver refines less.
+    bool specular_only = false;
 
     /// Whether the surface blocks all light: visibility, occluders and hidden regions count
     /// only such surfaces.

@@ -30,6 +30,8 @@ struct Patch {
     /// irradiance of its twin (the other side).
     Rgb diffuse_transmittance;
     Rgb emission; ///< emitted radiosity πL of this side, W/m²
+    /// The material is specular only (RadiosityResponse::specular_only).
+    bool specular_only = false;
     /// The pane's optics when the surface is glazing (a ThinGlass material), which rays cross
     /// with its transmittance T(θ); none for every other surface.
     std::optional<ThinGlass> glazing;

@@ -23,6 +23,7 @@ Hierarchy::Hierarchy(const RadiosityMesh& mesh) {
         transmittance.push_back(p.diffuse_transmittance);
         twin.push_back(mesh.element_twin[e]);
         opaque.push_back(p.opaque() ? 1 : 0);
+        specular_only.push_back(p.specular_only ? 1 : 0);
     }
 }
 
@@ -51,6 +52,7 @@ void Hierarchy::subdivide(std::uint32_t n) {
         transmittance.push_back(transmittance[n]);
         twin.push_back(-1); // paired by LinkSet::subdivide, which splits the twin too
         opaque.push_back(opaque[n]);
+        specular_only.push_back(specular_only[n]);
     }
 }
 

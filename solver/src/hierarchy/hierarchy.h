@@ -26,6 +26,9 @@ struct Hierarchy {
     /// twins together (LinkSet), so the children of twins are twins.
     std::vector<std::int32_t> twin;
     std::vector<std::uint8_t> opaque; ///< 1 where the surface blocks all light (Patch::opaque)
+    /// 1 where the surface is specular only (Patch::specular_only): its links are refined
+    /// less (oracle::receiver_settings).
+    std::vector<std::uint8_t> specular_only;
     std::size_t root_count = 0;
     double diagonal = 0;
 

@@ -528,10 +528,11 @@ bool LinkSet::refine_cluster_pass(std::vector<Rgb>& b, std::vector<float>& b_ran
         const ClusterLink& l = cluster_links_[k];
         if (cluster_kept_[k])
             return;
-        const bool over =
-            l.exact ? oracle::refine_exact_link(settings_, exact_link_error(l, b, b_range),
-                                                tables_->emits(l.source))
-                    : oracle::refine_lobe_link(settings_, cluster_link_error(l, b));
+        const OracleSettings s =
+            oracle::receiver_settings(settings_, tables_->specular_only(l.receiver));
+        const bool over = l.exact ? oracle::refine_exact_link(s, exact_link_error(l, b, b_range),
+                                                              tables_->emits(l.source))
+                                  : oracle::refine_lobe_link(s, cluster_link_error(l, b));
         if (!over)
             return;
         if (l.self) {

@@ -76,6 +76,12 @@ ClusterTables::ClusterTables(const Hierarchy& h, const ClusterTree& tree,
         dfs_plane_[k] = {h_.normal[r], dot(h_.normal[r], h_.triangle[r][0])};
     }
     dfs_exitance_ = dfs_area_; // until refine() weighs the sources by their radiosity
+    specular_only_.assign(tree.size(), 0);
+    for (std::size_t c = 0; c < tree.size(); ++c) {
+        const auto roots = cluster_roots(std::uint32_t(c));
+        specular_only_[c] = std::all_of(roots.begin(), roots.end(),
+                                        [&](std::uint32_t r) { return h_.specular_only[r] != 0; });
+    }
     build_boundaries();
     occluders_ = OccluderPlanes(h_);
     // Lobe bounds, children before parents (parents precede their children in the tree).

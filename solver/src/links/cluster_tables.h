@@ -37,6 +37,10 @@ public:
     const ClusterTree& tree() const { return *tree_; }
     /// Whether node \p n (an element or a face cluster) emits.
     bool emits(NodeRef n) const;
+    /// Whether node \p n (an element or a cluster) is specular only (all its roots are).
+    bool specular_only(NodeRef n) const {
+        return is_cluster(n) ? specular_only_[cluster_index(n)] != 0 : h_.specular_only[n] != 0;
+    }
     /// The roots of cluster \p c.
     std::span<const std::uint32_t> cluster_roots(std::uint32_t c) const {
         return std::span<const std::uint32_t>(dfs_roots_)
@@ -104,8 +108,9 @@ private:
     /// Per face cluster c, its boundary boundary_[boundary_begin_[c], boundary_begin_[c + 1]).
     std::vector<ContourEdge> boundary_;
     std::vector<std::uint32_t> boundary_begin_;
-    std::vector<std::uint8_t> exact_source_; ///< per cluster (LinkSet::exact_source)
-    std::vector<Lobes> area_lobes_;          ///< per cluster: Σ A max(0, ±n_a)
+    std::vector<std::uint8_t> exact_source_;  ///< per cluster (LinkSet::exact_source)
+    std::vector<std::uint8_t> specular_only_; ///< per cluster: all its roots are
+    std::vector<Lobes> area_lobes_;           ///< per cluster: Σ A max(0, ±n_a)
     /// The roots in depth-first order of the cluster tree, where every cluster is a range
     /// [root_begin_[c], root_end_[c]), and the running sum of their areas (one longer): a
     /// root is drawn by area with one binary search.

@@ -293,7 +293,9 @@ bool LinkSet::refine_pass(std::vector<Rgb>& b, std::vector<float>& b_range) {
             return;
         const Link& link = links_[k];
         const double aq = h_.area[link.receiver], ap = h_.area[link.source];
-        if (!oracle::refine_element_link(settings_, link, double(b[link.source].max_component()),
+        const OracleSettings s =
+            oracle::receiver_settings(settings_, h_.specular_only[link.receiver] != 0);
+        if (!oracle::refine_element_link(s, link, double(b[link.source].max_component()),
                                          double(b_range[link.source]), aq, ap))
             return;
         decision[k] = aq >= ap ? split_receiver : split_source;
@@ -352,7 +354,9 @@ bool LinkSet::refine_light_pass(std::vector<Rgb>& b, std::vector<float>& b_range
     std::vector<std::uint8_t> split(light_links_.size(), 0);
     parallel_for_index(light_links_.size(), 256, [&](std::size_t k) {
         const LightLink& l = light_links_[k];
-        split[k] = oracle::refine_light_link(settings_, l, h_.area[l.receiver]);
+        split[k] = oracle::refine_light_link(
+            oracle::receiver_settings(settings_, h_.specular_only[l.receiver] != 0), l,
+            h_.area[l.receiver]);
     });
     if (std::none_of(split.begin(), split.end(), [](std::uint8_t s) { return s != 0; }))
         return false;

@@ -89,6 +89,22 @@ inline constexpr int k_max_cluster_rays = 64;
 /// taken as occluded loses what light it carries, always in the same direction.
 inline constexpr double k_resample_margin = 16.0;
 
+/// Links to a receiver that is specular only (Hierarchy::specular_only: a mirror, a metal, a
+/// dielectric) are held to this many times the thresholds: the renderer traces what it shows,
+/// and nothing reads the solution's light on it but its reported irradiance
+/// (docs/calibration.md#k_specular_only_slack).
+inline constexpr double k_specular_only_slack = 10.0;
+
+/// \brief The settings a link to a receiver is refined by: \p s, with its thresholds times
+///        k_specular_only_slack when the receiver is \p specular_only.
+inline OracleSettings receiver_settings(OracleSettings s, bool specular_only) {
+    if (specular_only) {
+        s.threshold *= k_specular_only_slack;
+        s.cluster_threshold *= k_specular_only_slack;
+    }
+    return s;
+}
+
 /// \brief Whether a pair of ends whose centres are \p r apart and whose bounding radii sum
 ///        to \p radii may exchange light through one cluster link (k_admissible).
 inline bool admissible(double r, double radii) {

@@ -350,6 +350,7 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
     h.reflectance.assign(n, Rgb{});
     h.transmittance.assign(n, Rgb{});
     h.opaque.assign(n, 1);
+    h.specular_only.assign(n, 0);
     return s;
 }
 

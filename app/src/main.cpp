@@ -325,14 +325,18 @@ int run_render(const RenderFlags& flags, const CommonFlags& common) {
             *flags.irradiance_cache == "on"
                 ? std::optional(scene.render.irradiance_cache.value_or(IrradianceCacheSettings{}))
                 : std::nullopt;
+    const bool solves = render.gather != raytrace::GatherMode::none;
     std::shared_ptr<const solver::HierarchicalState> previous;
-    if (!flags.solution.empty())
+    if (!flags.solution.empty() && !solves)
+        ctx.warn("--solution {} is not read: --gather none traces its paths without a solution",
+                 flags.solution);
+    else if (!flags.solution.empty())
         previous = read_state(scene, flags.solution, "--solution");
     app::BakeOptions options;
     options.reuse = previous.get();
     options.render_options = render;
     options.keep_state = false;
-    options.solve = render.gather != raytrace::GatherMode::none;
+    options.solve = solves;
     app::BakeResult result = app::bake(scene, options, ctx);
     app::write_render_outputs(flags.scene.output, scene, result);
     const double seconds = result.times.empty() ? 0.0 : result.times.back().seconds;
@@ -534,10 +538,11 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.0, 1e9));
     render_cmd->add_option("--camera", render.scene.camera,
                            "render the camera of the scene's 'cameras' with this name");
-    render_cmd->add_option("--solution", render.solution,
-                           "start from an earlier bake's solution (its folder or "
-                           "solver_state.bin), as bake --reuse: its hierarchy and links are "
-                           "kept and the sweeps start from its radiosities");
+    render_cmd->add_option(
+        "--solution", render.solution,
+        "start from an earlier bake's solution (its folder or "
+        "solver_state.bin), as bake --reuse: its hierarchy and links are "
+        "kept and the sweeps start from its radiosities; not read with --gather none");
     add_common_flags(*render_cmd, common);
     BakeFlags daylight;
     auto* daylight_cmd = cli.add_subcommand(

@@ -442,6 +442,12 @@ TEST(RenderCommand, PathTracerModeDoesNotSolve) {
     EXPECT_NE(json.find("\"gather\": \"none\""), std::string::npos) << json;
     const Image image = read_exr(dir + "/none/render.exr");
     EXPECT_GT(mean_luminance(image), 0.0);
+    // Nor reads a solution: one that is not there only draws a warning.
+    const test::RunResult r =
+        test::run_cli("render " + scene + " --gather none --spp 1 --solution " + dir +
+                      "/missing -o " + dir + "/none_solution");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("--solution " + dir + "/missing is not read"), std::string::npos) << r.err;
 }
 
 /// `render --solution` re-solves from the bake's hierarchy and links (as `bake --reuse`): its

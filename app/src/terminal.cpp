@@ -1,5 +1,7 @@
 #include "terminal.h"
 
+#include "progress_line.h"
+
 #include <chrono>
 #include <cstdio>
 #include <mutex>
@@ -102,13 +104,9 @@ private:
     using clock = std::chrono::steady_clock;
     void draw(double fraction, clock::time_point now) {
         fraction_ = fraction;
-        constexpr int width = 40;
-        int filled = int(fraction * width + 0.5);
-        double elapsed = std::chrono::duration<double>(now - start_).count();
-        std::fprintf(stderr, "\r%-14s [%s%s] %3d%% %6.1f s", stage_.c_str(),
-                     std::string(std::size_t(filled), '#').c_str(),
-                     std::string(std::size_t(width - filled), '.').c_str(),
-                     int(fraction * 100 + 0.5), elapsed);
+        const double elapsed = std::chrono::duration<double>(now - start_).count();
+        // Cleared to the line's end: the time left may print shorter than the line before.
+        std::fprintf(stderr, "\r%s\033[K", progress_line(stage_, fraction, elapsed).c_str());
         std::fflush(stderr);
         last_draw_ = now;
         shown_ = true;

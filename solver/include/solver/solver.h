@@ -92,7 +92,8 @@ std::shared_ptr<const HierarchicalState> read_hierarchical_state(const std::stri
 ///        \p specular (null or empty: none; per element of \p mesh): light that reaches
 ///        elements through specular surfaces (caustic photons, issue #28): the sources' part
 ///        a fixed source whose reflection ρ H the solve spreads like any light, the transfers
-///        between diffuse elements applied to the radiosities of every sweep, so that light
+///        between diffuse elements (given, or traced by SpecularLight::trace_transfers from
+///        the first cycle's exitance) applied to the radiosities of every sweep, so that light
 ///        crossing specular surfaces any number of times converges with the rest. It is in
 ///        the elements' indirect irradiance, not in their emission, and the balance books it
 ///        as emitted (delivered) power. The hierarchical method only: the others warn and

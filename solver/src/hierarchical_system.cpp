@@ -321,10 +321,8 @@ void trace_specular_transfers(HierarchicalSystem& sys, const SpecularLight& spec
     const Hierarchy& h = sys.h;
     NodeValues& v = sys.values;
     std::vector<Rgb> exitance(h.root_count);
-    for (std::size_t r = 0; r < h.root_count; ++r) {
-        const Rgb m = v.b[r] - h.emission[r];
-        exitance[r] = Rgb(std::max(0.0f, m.r), std::max(0.0f, m.g), std::max(0.0f, m.b));
-    }
+    for (std::uint32_t r = 0; r < h.root_count; ++r)
+        exitance[r] = reflected_exitance(h, v.b, r);
     sys.traced_transfers = specular.trace_transfers(exitance);
     check_transfers(sys.traced_transfers, h.root_count);
     v.specular_transfers = sys.traced_transfers;

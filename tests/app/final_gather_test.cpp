@@ -45,13 +45,8 @@ Scene furnace(double rho, double exitance) {
     scene.solver.method = SolverMethod::shooting; // a furnace converges slowly otherwise
     scene.solver.residual = 1e-5;
     scene.render.max_bounces = 64; // ρ^65 of the answer left out: below 1e-19
-    Camera camera;
-    camera.eye = {0.3, 0.4, 0.3};
-    camera.look_at = {0.9, 1.2, 0.5}; // a corner: three walls, two edges
-    camera.up = {0, 0, 1};
-    camera.fov_deg = 70;
-    camera.width = camera.height = 24;
-    scene.camera = camera;
+    // A corner: three walls, two edges.
+    scene.camera = test::square_camera({0.3, 0.4, 0.3}, {0.9, 1.2, 0.5}, {0, 0, 1}, 70, 24);
     return scene;
 }
 

@@ -49,13 +49,8 @@ TEST(IrradianceCache, FurnaceReadsTheGeometricSeries) {
     const float rho = 0.5f, exitance = 1.0f;
     Scene scene = test::furnace_room(rho, exitance);
     scene.render.max_bounces = 64; // ρ^65 of the answer left out
-    Camera camera;
-    camera.eye = {0.2, 0.2, 0.2};
-    camera.look_at = {0.9, 0.6, 0.4}; // a corner: three walls, two edges
-    camera.up = {0, 0, 1};
-    camera.fov_deg = 70;
-    camera.width = camera.height = 32;
-    scene.camera = camera;
+    // A corner: three walls, two edges.
+    scene.camera = test::square_camera({0.2, 0.2, 0.2}, {0.9, 0.6, 0.4}, {0, 0, 1}, 70, 32);
     const app::BakeResult baked = test::bake(scene);
     const raytrace::EmbreeScene rt(baked.mesh);
     const double expected = exitance / (k_pi * (1 - rho));

@@ -37,12 +37,8 @@ TEST(LightmapPreview, BilinearLookupReproducesALinearRampAndClampsAtTheEdges) {
 TEST(LightmapPreview, FurnaceSeenFromInsideIsUniform) {
     const float rho = 0.5f, exitance = 1.0f;
     Scene scene = test::furnace_room(rho, exitance);
-    Camera camera;
-    camera.eye = {0.5, 0.35, 0.25};
-    camera.look_at = {0.9, 0.6, 0.05}; // a corner in view: three walls and their edges
-    camera.up = {0, 0, 1};
-    camera.fov_deg = 80;
-    camera.width = camera.height = 48;
+    // A corner in view: three walls and their edges.
+    Camera camera = test::square_camera({0.5, 0.35, 0.25}, {0.9, 0.6, 0.05}, {0, 0, 1}, 80, 48);
     camera.samples_per_pixel = 4;
     scene.camera = camera;
     app::LightmapOptions options;

@@ -38,13 +38,8 @@ Image render(const app::BakeResult& baked, const Scene& scene, GatherMode mode, 
 Scene furnace_with_camera(float rho, float exitance) {
     Scene scene = test::furnace_room(rho, exitance);
     scene.render.max_bounces = 64; // ρ^65 of the answer left out: below 1e-10
-    Camera camera;
-    camera.eye = {0.2, 0.2, 0.25};
-    camera.look_at = {0.9, 0.6, 0.3}; // a corner: three walls, two edges
-    camera.up = {0, 0, 1};
-    camera.fov_deg = 70;
-    camera.width = camera.height = 24;
-    scene.camera = camera;
+    // A corner: three walls, two edges.
+    scene.camera = test::square_camera({0.2, 0.2, 0.25}, {0.9, 0.6, 0.3}, {0, 0, 1}, 70, 24);
     return scene;
 }
 

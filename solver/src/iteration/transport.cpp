@@ -11,6 +11,11 @@
 
 namespace penumbra::solver {
 
+Rgb reflected_exitance(const Hierarchy& h, const std::vector<Rgb>& b, std::uint32_t n) {
+    const Rgb m = b[n] - h.emission[n];
+    return {std::max(0.0f, m.r), std::max(0.0f, m.g), std::max(0.0f, m.b)};
+}
+
 namespace {
 
 /// Gauss–Seidel sweeps take the roots in blocks of this many, in order: the links of a block
@@ -33,9 +38,7 @@ void size_values(const Hierarchy& h, NodeValues& v) {
 void transfer_specular(const Hierarchy& h, NodeValues& v) {
     std::vector<RgbD> power(h.root_count);
     for (const SpecularLight::Transfer& t : v.specular_transfers) { // serial: a fixed order
-        const Rgb m = v.b[t.from] - h.emission[t.from];
-        const Rgb reflected{std::max(0.0f, m.r), std::max(0.0f, m.g), std::max(0.0f, m.b)};
-        power[t.to] += RgbD(reflected * t.area_m2);
+        power[t.to] += RgbD(reflected_exitance(h, v.b, t.from) * t.area_m2);
     }
     for (std::size_t r = 0; r < h.root_count; ++r) {
         const RgbD e = power[r] * (1.0 / h.area[r]);

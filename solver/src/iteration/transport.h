@@ -104,6 +104,9 @@ TreeNodes tree_nodes(const Hierarchy& h);
 /// and hands the observer a snapshot when one is due.
 void record_pass(const Hierarchy& h, const NodeValues& v, SweepLog& log, double relative,
                  bool history);
+/// Node \p n's reflected exitance B − E in \p b, each channel at least 0 (W/m²): what the
+/// specular transfers are linear in, and their photons' sources are drawn by.
+Rgb reflected_exitance(const Hierarchy& h, const std::vector<Rgb>& b, std::uint32_t n);
 /// Σ A |ΔB| over the leaves and channels between \p before and \p after, over 3 × \p emitted:
 /// the change by which every sweep, and the rounds that re-weigh the leaves, stop.
 double relative_leaf_change(const Hierarchy& h, const std::vector<Rgb>& before,

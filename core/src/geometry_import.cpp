@@ -7,10 +7,14 @@
 #include "geometry_import.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
+#include <iterator>
+#include <memory>
 #include <set>
 #include <sstream>
 
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/scene.h>
@@ -185,6 +189,37 @@ void check_obj_material_libraries(const std::string& path) {
     }
 }
 
+// A file is read as the format its extension names. Left to itself, assimp tries every reader
+// by content when the extension's own readers refuse a file, and reports a broken .gltf as an
+// OBJ error (issue #32). Throws the own reader's complaint; a file it can read, or an
+// extension assimp does not know, is left to Importer::ReadFile.
+void check_extension_reader(Assimp::Importer& importer, const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    if (extension.empty())
+        return;
+    extension.erase(0, 1);
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    Assimp::BaseImporter* own = nullptr;
+    for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) {
+        std::istringstream listed(importer.GetImporterInfo(i)->mFileExtensions);
+        if (std::find(std::istream_iterator<std::string>(listed),
+                      std::istream_iterator<std::string>(),
+                      extension) == std::istream_iterator<std::string>())
+            continue;
+        own = importer.GetImporter(i);
+        if (own->CanRead(path, importer.GetIOHandler(), false))
+            return;
+    }
+    if (!own)
+        return;
+    // The last reader of the extension is the newest format's (glTF 2.0 after 1.0): its error.
+    std::unique_ptr<aiScene> scene(own->ReadFile(&importer, path, importer.GetIOHandler()));
+    const std::string why =
+        own->GetErrorText().empty() ? "its reader refuses it" : own->GetErrorText();
+    throw InputError(path, "geometry", fmt::format("not a readable .{} file: {}", extension, why));
+}
+
 } // namespace
 
 ImportedGeometry import_geometry(const std::string& path, const std::string& label,
@@ -195,6 +230,7 @@ ImportedGeometry import_geometry(const std::string& path, const std::string& lab
     if (std::filesystem::path(path).extension() == ".obj")
         check_obj_material_libraries(path);
     Assimp::Importer importer;
+    check_extension_reader(importer, path);
     const aiScene* scene = importer.ReadFile(path, 0); // no post-processing, see above
     if (!scene || !scene->mRootNode)
         throw InputError(path, "geometry",

@@ -649,6 +649,36 @@ TEST(SceneIo, MissingMaterialLibraryFolderAndLongLinesAreClearErrors) {
     }
 }
 
+// Issue #32: a garbage .gltf was reported as "OBJ: Invalid face index" (assimp tried every
+// reader by content when the glTF readers refused it); it is a glTF error now, with the glTF
+// reader's reason.
+TEST(SceneIo, BrokenGltfIsAGltfError) {
+    const std::string dir = test::temp_dir("scene-broken-gltf");
+    const std::pair<const char*, const char*> files[] = {{"bad.gltf", ".gltf"},
+                                                         {"bad.GLB", ".glb"}};
+    for (const auto& [name, extension] : files) {
+        write_file(dir, name, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n"); // OBJ's text
+        write_file(dir, "scene.json", fmt::format(R"json({{"geometry": "{}"}})json", name));
+        try {
+            load_scene(dir + "/scene.json");
+            ADD_FAILURE() << "no InputError thrown";
+        } catch (const InputError& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(name), std::string::npos) << message;
+            EXPECT_NE(message.find("'geometry'"), std::string::npos) << message;
+            EXPECT_NE(message.find(std::string("not a readable ") + extension + " file"),
+                      std::string::npos)
+                << message;
+            EXPECT_NE(message.find("GLTF"), std::string::npos) << message;
+            EXPECT_EQ(message.find("OBJ"), std::string::npos) << message;
+        }
+    }
+    write_file(dir, "broken.gltf", R"json({"asset": {"version": "2.0"}, "meshes": [{]})json");
+    write_file(dir, "broken.json", R"json({"geometry": "broken.gltf"})json");
+    expect_input_error([&] { load_scene(dir + "/broken.json"); },
+                       {"broken.gltf", "not a readable .gltf file", "JSON parse error, offset 42"});
+}
+
 TEST(SceneIo, MalformedJsonNamesTheLine) {
     const std::string dir = test::temp_dir("scene-malformed");
     write_file(dir, "scene.json", "{\n  \"name\": \"x\",\n  \"units\": mm\n}\n");

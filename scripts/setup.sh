@@ -73,7 +73,7 @@ install_npm_packages() {
 build() {
     local dir="${BUILD_DIR:-build}"
     local jobs="${JOBS:-$(nproc)}"
-    cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}"
+    cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}" -DPENUMBRA_WERROR=ON
     cmake --build "$dir" -j "$jobs"
 }
 

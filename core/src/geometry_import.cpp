@@ -7,7 +7,6 @@
 #include "geometry_import.h"
 
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <iterator>
 #include <memory>
@@ -194,12 +193,10 @@ void check_obj_material_libraries(const std::string& path) {
 // OBJ error (issue #32). Throws the own reader's complaint; a file it can read, or an
 // extension assimp does not know, is left to Importer::ReadFile.
 void check_extension_reader(Assimp::Importer& importer, const std::string& path) {
-    std::string extension = std::filesystem::path(path).extension().string();
-    if (extension.empty())
+    const std::string dotted = lowercase_extension(path);
+    if (dotted.empty())
         return;
-    extension.erase(0, 1);
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string extension = dotted.substr(1); // assimp lists extensions without the dot
     Assimp::BaseImporter* own = nullptr;
     for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) {
         std::istringstream listed(importer.GetImporterInfo(i)->mFileExtensions);

@@ -155,10 +155,15 @@ void gltf_lobe(const Source& s, Material& material) {
 
 } // namespace
 
-MaterialConvention material_convention(const std::string& path) {
+std::string lowercase_extension(const std::string& path) {
     std::string extension = std::filesystem::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
+}
+
+MaterialConvention material_convention(const std::string& path) {
+    const std::string extension = lowercase_extension(path);
     if (extension == ".obj")
         return MaterialConvention::mtl;
     if (extension == ".gltf" || extension == ".glb")

@@ -17,6 +17,9 @@ enum class MaterialConvention {
     other ///< any other format: the diffuse and emissive colours only
 };
 
+/// \brief The extension of \p path in lower case, with its dot (".gltf"; "" for none).
+std::string lowercase_extension(const std::string& path);
+
 /// \brief The convention of the geometry file \p path, by its extension.
 MaterialConvention material_convention(const std::string& path);
 
